@@ -1,0 +1,1 @@
+"""The playing agent: transport, agent loop, strategy, team launcher and the command line."""

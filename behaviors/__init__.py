@@ -1,0 +1,1 @@
+"""Skills and the behaviour manager. Runs with numpy only: no pybullet, no torch."""
