@@ -1,0 +1,148 @@
+"""The ``naosoccer`` command line.
+
+Subcommands import their heavy parts (PyBullet for the server) only when they run, so that
+``import agent`` stays light for a playing agent.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import signal
+import sys
+import threading
+from collections.abc import Sequence
+
+SERVER_EXAMPLES = """examples:
+  naosoccer server                      real-time server on 127.0.0.1:3100 (monitor 3200)
+  naosoccer server --sync --seed 7      wait for every agent's (syn), as fast as possible
+  naosoccer server --host 0.0.0.0 --port 3100 --monitor-port 3200 --config config/server.yaml
+"""
+
+DEMO_EXAMPLES = """examples:
+  naosoccer demo                        embedded server + a scripted client for 5 s
+  naosoccer demo --cycles 1000          a longer run
+"""
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = _build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(
+        level=getattr(logging, args.log_level.upper()),
+        format="%(asctime)s %(levelname)-7s %(name)s: %(message)s",
+    )
+    if not hasattr(args, "run"):
+        parser.print_help()
+        return 2
+    try:
+        return args.run(args)
+    except KeyboardInterrupt:
+        return 130
+    except (OSError, ValueError) as exc:
+        print(f"naosoccer: error: {exc}", file=sys.stderr)
+        return 1
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="naosoccer", description="RoboCup 3D soccer with simulated NAO robots."
+    )
+    parser.add_argument("--log-level", default="info", choices=["debug", "info", "warning", "error"])
+    commands = parser.add_subparsers(title="commands")
+
+    server = commands.add_parser(
+        "server",
+        help="run the PyBullet stand-in for rcssserver3d",
+        description="Run the stand-in server: agents on --port, monitors and trainers on "
+        "--monitor-port, the real server's wire protocol on both.",
+        epilog=SERVER_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    _add_server_options(server)
+    server.set_defaults(run=_run_server)
+
+    demo = commands.add_parser(
+        "demo",
+        help="embedded server plus a short scripted client (the README's main job for now)",
+        description="Start the stand-in server in this process and run a scripted client that "
+        "connects over TCP, beams in, moves its joints and prints what it perceives.",
+        epilog=DEMO_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    demo.add_argument("--cycles", type=int, default=250, help="cycles to run (0.02 s each)")
+    demo.add_argument("--seed", type=int, default=0)
+    demo.set_defaults(run=_run_demo)
+    return parser
+
+
+def _add_server_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--host", default="127.0.0.1", help="address to listen on")
+    parser.add_argument("--port", type=int, default=3100, help="agent port (default 3100)")
+    parser.add_argument(
+        "--monitor-port", type=int, default=3200, help="monitor/trainer port (default 3200)"
+    )
+    pacing = parser.add_mutually_exclusive_group()
+    pacing.add_argument(
+        "--sync", action="store_true", help="wait for every agent's (syn), as fast as possible"
+    )
+    pacing.add_argument(
+        "--real-time", action="store_true", help="50 cycles per second (the default)"
+    )
+    parser.add_argument("--seed", type=int, default=0, help="seed for all simulator noise")
+    parser.add_argument("--config", help="server settings (YAML), e.g. config/server.yaml")
+
+
+def _make_session(seed: int, config_path: str | None = None):
+    from dataclasses import replace
+
+    from sim.session import Session, SessionConfig
+
+    config = SessionConfig.from_yaml(config_path) if config_path else SessionConfig()
+    return Session(replace(config, seed=seed))
+
+
+def _run_server(args: argparse.Namespace) -> int:
+    from sim.server import SoccerServer
+
+    session = _make_session(args.seed, args.config)
+    server = SoccerServer(session, args.host, args.port, args.monitor_port, sync=args.sync)
+    signal.signal(signal.SIGTERM, lambda *_: server.stop())
+    mode = "sync" if args.sync else "real-time"
+    print(
+        f"naosoccer server ({mode}) on {args.host}: agents {server.port}, "
+        f"monitor {server.monitor_port}; Ctrl-C stops it",
+        flush=True,
+    )
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        server.close()
+        session.close()
+    return 0
+
+
+def _run_demo(args: argparse.Namespace) -> int:
+    from agent.demo import run_demo_client
+    from sim.server import SoccerServer
+
+    session = _make_session(args.seed)
+    server = SoccerServer(session, "127.0.0.1", 0, 0, sync=True)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    print(f"embedded server (sync mode) on 127.0.0.1:{server.port}, monitor {server.monitor_port}")
+    try:
+        received = run_demo_client("127.0.0.1", server.port, cycles=args.cycles)
+    finally:
+        server.stop()
+        thread.join(timeout=5)
+        server.close()
+        session.close()
+    print(f"demo finished: {received} perceptions received, simulated {received * 0.02:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,251 @@
+"""The networked stand-in server: agent port (3100) and monitor/trainer port (3200) over TCP.
+
+A single-threaded ``selectors`` loop wraps one :class:`~sim.session.Session`. Every message in
+both directions is length-prefixed (4-byte big-endian) S-expressions, as rcssserver3d speaks.
+
+Pacing:
+- sync mode (``--sync``): a cycle runs as soon as every agent with a robot has sent ``(syn)``
+  for the previous perception, so the game runs as fast as the slowest agent allows;
+- real-time mode: a cycle every 0.02 s whatever the agents do.
+
+Bad input never stops the server: a message that does not parse is logged and ignored (as the
+real server does), a frame whose length prefix exceeds the limit or a client that vanishes
+mid-frame is logged and that client dropped; every other agent keeps getting its cycles.
+"""
+
+from __future__ import annotations
+
+import errno
+import logging
+import selectors
+import socket
+import time
+from dataclasses import dataclass, field
+
+from sim.monitor import parse_trainer_commands
+from sim.session import Session
+from world.framing import FrameDecoder, FrameError, frame
+
+log = logging.getLogger(__name__)
+
+#: Largest message an agent or a monitor may send us (effectors and trainer commands are small).
+MAX_INPUT_FRAME = 64 * 1024
+#: Monitors get a scene update every this many cycles, as the real server.
+MONITOR_INTERVAL = 2
+#: A sync-mode server gives up waiting for an agent's (syn) after this long and drops it.
+SYNC_TIMEOUT_S = 30.0
+
+
+@dataclass
+class _Client:
+    sock: socket.socket
+    address: str
+    kind: str  # "agent" or "monitor"
+    decoder: FrameDecoder = field(default_factory=lambda: FrameDecoder(MAX_INPUT_FRAME))
+    outbox: bytearray = field(default_factory=bytearray)
+    agent_id: int | None = None
+    synced: bool = True
+
+
+class SoccerServer:
+    """Serve one :class:`Session` to agents and monitors over TCP."""
+
+    def __init__(
+        self,
+        session: Session,
+        host: str = "127.0.0.1",
+        port: int = 3100,
+        monitor_port: int = 3200,
+        sync: bool = False,
+    ) -> None:
+        self.session = session
+        self.sync = sync
+        self.selector = selectors.DefaultSelector()
+        self.agent_listener = self._listen(host, port, "agent")
+        self.monitor_listener = self._listen(host, monitor_port, "monitor")
+        self.clients: dict[socket.socket, _Client] = {}
+        self._running = False
+
+    # ------------------------------------------------------------------ public
+    @property
+    def port(self) -> int:
+        return self.agent_listener.getsockname()[1]
+
+    @property
+    def monitor_port(self) -> int:
+        return self.monitor_listener.getsockname()[1]
+
+    def serve_forever(self, max_cycles: int | None = None) -> None:
+        """Run until :meth:`stop` is called (from a callback or a signal) or ``max_cycles``."""
+        self._running = True
+        next_cycle = time.monotonic()
+        waiting_since = time.monotonic()
+        while self._running and (max_cycles is None or self.session.cycle < max_cycles):
+            if self.sync and self._agents_with_robots():
+                self._poll(0.05 if not self._all_synced() else 0.0)
+                if not self._all_synced():
+                    if time.monotonic() - waiting_since > SYNC_TIMEOUT_S:
+                        self._drop_unsynced()
+                    continue
+                waiting_since = next_cycle = time.monotonic()
+            else:  # real time, and sync mode with nobody to wait for
+                self._poll(max(0.0, next_cycle - time.monotonic()))
+                if time.monotonic() < next_cycle:
+                    continue
+                next_cycle += 0.02
+                if time.monotonic() - next_cycle > 1.0:  # fell far behind: do not try to catch up
+                    next_cycle = time.monotonic()
+            self.run_cycle()
+
+    def stop(self) -> None:
+        self._running = False
+
+    def close(self) -> None:
+        for client in list(self.clients.values()):
+            self._drop(client, None)
+        for listener in (self.agent_listener, self.monitor_listener):
+            self.selector.unregister(listener)
+            listener.close()
+        self.selector.close()
+
+    def run_cycle(self) -> None:
+        """Step the game once and send every agent its perception (and monitors their update)."""
+        self.session.step()
+        for client in list(self.clients.values()):
+            if client.kind == "agent" and client.agent_id is not None:
+                payload = self.session.perception(client.agent_id)
+                if payload is not None:
+                    client.synced = False
+                    self._send(client, payload)
+        if self.session.cycle % MONITOR_INTERVAL == 0 and self._monitors():
+            message = self.session.monitor_message()
+            for client in self._monitors():
+                self._send(client, message)
+
+    # ------------------------------------------------------------------ sockets
+    def _listen(self, host: str, port: int, kind: str) -> socket.socket:
+        listener = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            listener.bind((host, port))
+        except OSError as exc:
+            listener.close()
+            raise OSError(exc.errno, f"cannot listen for {kind}s on {host}:{port}: {exc}") from None
+        listener.listen(64)
+        listener.setblocking(False)
+        self.selector.register(listener, selectors.EVENT_READ, kind)
+        log.info("listening for %ss on %s:%d", kind, host, listener.getsockname()[1])
+        return listener
+
+    def _poll(self, timeout: float) -> None:
+        for key, events in self.selector.select(timeout):
+            if key.data in ("agent", "monitor"):
+                self._accept(key.fileobj, key.data)
+                continue
+            client = key.data
+            if events & selectors.EVENT_READ:
+                self._read(client)
+            if events & selectors.EVENT_WRITE and client.sock in self.clients:
+                self._flush(client)
+
+    def _accept(self, listener: socket.socket, kind: str) -> None:
+        try:
+            sock, address = listener.accept()
+        except BlockingIOError:
+            return
+        sock.setblocking(False)
+        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        client = _Client(sock, f"{address[0]}:{address[1]}", kind)
+        self.clients[sock] = client
+        self.selector.register(sock, selectors.EVENT_READ, client)
+        if kind == "agent":
+            client.agent_id = self.session.add_agent()
+            log.info("agent %d connected from %s", client.agent_id, client.address)
+        else:
+            log.info("monitor connected from %s", client.address)
+            self.session.request_full_state()
+
+    def _read(self, client: _Client) -> None:
+        try:
+            data = client.sock.recv(65536)
+        except (ConnectionError, OSError) as exc:
+            self._drop(client, f"connection error: {exc}")
+            return
+        if not data:
+            reason = None
+            if client.decoder.pending:
+                reason = f"vanished mid-frame ({client.decoder.pending} bytes of a message unread)"
+            self._drop(client, reason)
+            return
+        try:
+            payloads = client.decoder.feed(data)
+        except FrameError as exc:
+            self._drop(client, str(exc))
+            return
+        for payload in payloads:
+            self._dispatch(client, payload)
+
+    def _dispatch(self, client: _Client, payload: bytes) -> None:
+        if client.kind == "monitor":
+            commands, errors = parse_trainer_commands(payload)
+            for error in errors:
+                log.warning("monitor %s: %s", client.address, error)
+            self.session.trainer_command(commands)
+            return
+        try:
+            self.session.handle_message(client.agent_id, payload)
+        except Exception:  # a bug must not take the other agents down with it
+            log.exception("agent %d: message %r could not be handled", client.agent_id, payload[:80])
+        if self.session.syn_received(payload):
+            client.synced = True
+
+    def _send(self, client: _Client, payload: bytes) -> None:
+        client.outbox += frame(payload)
+        self._flush(client)
+
+    def _flush(self, client: _Client) -> None:
+        try:
+            sent = client.sock.send(client.outbox)
+        except BlockingIOError:
+            sent = 0
+        except OSError as exc:
+            if exc.errno not in (errno.EAGAIN, errno.EWOULDBLOCK):
+                self._drop(client, f"send failed: {exc}")
+                return
+            sent = 0
+        del client.outbox[:sent]
+        events = selectors.EVENT_READ | (selectors.EVENT_WRITE if client.outbox else 0)
+        self.selector.modify(client.sock, events, client)
+
+    def _drop(self, client: _Client, reason: str | None) -> None:
+        if reason:
+            log.error("%s %s dropped: %s", client.kind, client.address, reason)
+        else:
+            log.info("%s %s disconnected", client.kind, client.address)
+        self.clients.pop(client.sock, None)
+        try:
+            self.selector.unregister(client.sock)
+        except (KeyError, ValueError):
+            pass
+        client.sock.close()
+        if client.agent_id is not None:
+            self.session.remove_agent(client.agent_id)
+
+    # ------------------------------------------------------------------ sync
+    def _agents_with_robots(self) -> list[_Client]:
+        return [
+            c
+            for c in self.clients.values()
+            if c.kind == "agent" and self.session.perception(c.agent_id) is not None
+        ]
+
+    def _all_synced(self) -> bool:
+        return all(c.synced for c in self._agents_with_robots())
+
+    def _drop_unsynced(self) -> None:
+        for client in self._agents_with_robots():
+            if not client.synced:
+                self._drop(client, f"no (syn) for {SYNC_TIMEOUT_S:.0f} s in sync mode")
+
+    def _monitors(self) -> list[_Client]:
+        return [c for c in self.clients.values() if c.kind == "monitor"]
