@@ -183,8 +183,12 @@ class Session:
         self._trainer_queue.extend(commands)
 
     # ------------------------------------------------------------------ stepping
-    def step(self) -> None:
-        """Advance one 0.02 s cycle and prepare every agent's perception."""
+    def step(self, perceive: bool = True) -> None:
+        """Advance one 0.02 s cycle and prepare every agent's perception.
+
+        ``perceive=False`` skips writing perception messages (for benchmarks and for
+        fast-forwarding a scripted part where nobody reads them).
+        """
         for slot in list(self.agents.values()):
             self._apply_staged(slot)
         self._apply_trainer_commands()
@@ -197,6 +201,8 @@ class Session:
         self._run_referee(robots)
         heard = self._said
         self._said = []
+        if not perceive:
+            return
         for slot in robots:
             slot.perception_bytes = self._perceive(slot, robots, heard)
 

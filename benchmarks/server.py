@@ -1,0 +1,167 @@
+"""Server speed figures, one ``name: value`` line each.
+
+    python benchmarks/server.py            # full run (about a minute)
+    python benchmarks/server.py --quick    # fewer cycles
+
+Figures:
+- ``inprocess_cycles_per_s``: one robot moving its joints and a ball, in-process session, with
+  the perception message written every cycle (what training pays);
+- ``inprocess_cycles_per_s_no_perception``: the same without writing perceptions (physics,
+  sensors and referee only);
+- ``networked22_cycles_per_s`` and ``networked22_realtime_factor``: 22 agents (11 a side, robot
+  types mixed as the rules allow) in sync mode over TCP, each parsing its perception and answering
+  with new joint speeds every cycle; the server runs as its own process (``naosoccer server
+  --sync``), all 22 clients in this one, so on a 2-core machine each side has about one core;
+- ``parse_us`` / ``write_us``: one full perception message (with a ``See``) parsed / written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from benchmarks.codec import measure_parse_us, measure_write_us  # noqa: E402
+from world.framing import FrameDecoder, frame  # noqa: E402
+from world.perception import parse_perception  # noqa: E402
+
+SCENE = "(scene rsg/agent/nao/nao_hetero.rsg {})"
+#: 11 robots of one team: 5 types, at most 7 (here 4) of one type, as the rules ask
+TEAM_TYPES = (0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4)
+
+
+def _joint_command(cycle: int, offset: float) -> bytes:
+    s = 1.5 * math.sin(cycle / 8.0 + offset)
+    return (
+        f"(rae1 {s:.3f})(lae1 {-s:.3f})(rae2 {s / 2:.3f})(lle3 {s / 3:.3f})(rle3 {-s / 3:.3f})"
+        f"(lle4 {s / 4:.3f})(he1 {s / 2:.3f})(syn)"
+    ).encode()
+
+
+def inprocess_cycles_per_s(cycles: int, with_perception: bool) -> float:
+    from sim.session import Session, SessionConfig
+
+    session = Session(SessionConfig(seed=0))
+    agent = session.add_agent()
+    session.handle_message(agent, SCENE.format(0).encode())
+    session.step()
+    session.handle_message(agent, b"(init (unum 1)(teamname Bench))(syn)")
+    session.step()
+    session.handle_message(agent, b"(beam -2 0 0)(syn)")
+    for i in range(20):
+        session.step()
+    start = time.perf_counter()
+    for i in range(cycles):
+        session.handle_message(agent, _joint_command(i, 0.0))
+        session.step(perceive=with_perception)
+        session.perception(agent)
+    elapsed = time.perf_counter() - start
+    session.close()
+    return cycles / elapsed
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _start_server(port: int, monitor_port: int) -> subprocess.Popen:
+    command = [
+        sys.executable, "-m", "agent.cli", "--log-level", "warning", "server", "--sync",
+        "--port", str(port), "--monitor-port", str(monitor_port),
+    ]
+    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL)
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline:
+        try:
+            socket.create_connection(("127.0.0.1", port), timeout=1).close()
+            return process
+        except OSError:
+            time.sleep(0.2)
+    process.kill()
+    raise RuntimeError("the server did not start")
+
+
+class _Agent:
+    def __init__(self, port: int, robot_type: int, team: str, unum: int) -> None:
+        self.sock = socket.create_connection(("127.0.0.1", port))
+        self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.decoder = FrameDecoder()
+        self.ready: list[bytes] = []
+        self.robot_type, self.team, self.unum = robot_type, team, unum
+
+    def send(self, payload: bytes) -> None:
+        self.sock.sendall(frame(payload))
+
+    def receive(self) -> bytes:
+        while not self.ready:
+            self.ready.extend(self.decoder.feed(self.sock.recv(65536)))
+        return self.ready.pop(0)
+
+
+def networked22(cycles: int) -> float:
+    port, monitor_port = _free_port(), _free_port()
+    server = _start_server(port, monitor_port)
+    agents: list[_Agent] = []
+    try:
+        for team in ("Left", "Right"):
+            for unum, robot_type in enumerate(TEAM_TYPES, start=1):
+                agent = _Agent(port, robot_type, team, unum)
+                # real clients finish their handshake one at a time
+                agent.send(SCENE.format(robot_type).encode())
+                agent.receive()
+                agent.send(f"(init (unum {unum})(teamname {team}))(syn)".encode())
+                for other in agents:
+                    other.send(b"(syn)")
+                agents.append(agent)
+                for a in agents:
+                    a.receive()
+        for agent in agents:
+            agent.send(f"(beam {-1 - agent.unum} {agent.unum % 4 - 2} 0)(syn)".encode())
+        for _ in range(10):
+            for agent in agents:
+                agent.receive()
+            for agent in agents:
+                agent.send(b"(syn)")
+        start = time.perf_counter()
+        for cycle in range(cycles):
+            for i, agent in enumerate(agents):
+                parse_perception(agent.receive())
+                agent.send(_joint_command(cycle, i))
+        elapsed = time.perf_counter() - start
+        return cycles / elapsed
+    finally:
+        for agent in agents:
+            agent.sock.close()
+        server.terminate()
+        server.wait(timeout=10)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer cycles (noisier)")
+    args = parser.parse_args()
+    n = 300 if args.quick else 2000
+    print(f"inprocess_cycles_per_s: {inprocess_cycles_per_s(n, True):.0f}", flush=True)
+    print(
+        f"inprocess_cycles_per_s_no_perception: {inprocess_cycles_per_s(n, False):.0f}", flush=True
+    )
+    rate = networked22(100 if args.quick else 500)
+    print(f"networked22_cycles_per_s: {rate:.1f}")
+    print(f"networked22_realtime_factor: {rate * 0.02:.2f}")
+    print(f"parse_us: {measure_parse_us():.1f}")
+    print(f"write_us: {measure_write_us():.1f}")
+    print(f"cpu_count: {os.cpu_count()}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,164 @@
+"""The in-process session: handshake, timing, physics sanity, referee in the loop, save/restore."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from sim.monitor import parse_trainer_commands
+from sim.session import Session, SessionConfig
+from world.perception import parse_perception
+
+SCENE = b"(scene rsg/agent/nao/nao_hetero.rsg 0)"
+
+
+def _join(session: Session, team: str = "Alpha", unum: int = 1, beam=(-2.0, 0.0, 0.0)) -> int:
+    """Connect one agent, init and beam it, and let it settle on its feet (play mode unchanged)."""
+    agent = session.add_agent()
+    session.handle_message(agent, SCENE)
+    session.step()
+    session.handle_message(agent, f"(init (unum {unum})(teamname {team}))(syn)".encode())
+    session.step()
+    x, y, deg = beam
+    session.handle_message(agent, f"(beam {x} {y} {deg})(syn)".encode())
+    for _ in range(40):
+        session.step()
+    return agent
+
+
+def _trainer(session: Session, text: str) -> None:
+    commands, errors = parse_trainer_commands(text.encode())
+    assert not errors, errors
+    session.trainer_command(commands)
+
+
+@pytest.fixture
+def session():
+    s = Session(SessionConfig(seed=3, beam_noise=False))
+    yield s
+    s.close()
+
+
+def test_identity_arrives_two_messages_after_init(session):
+    agent = session.add_agent()
+    session.handle_message(agent, SCENE)
+    session.step()
+    first = parse_perception(session.perception(agent))
+    assert first.vision is not None, "the first message holds a See"
+    session.handle_message(agent, b"(init (unum 7)(teamname Alpha))(syn)")
+    identities = []
+    for _ in range(4):
+        session.step()
+        gs = parse_perception(session.perception(agent)).game_state
+        identities.append((gs.unum, gs.team))
+    assert identities == [(None, None), (7, "left"), (None, None), (None, None)]
+
+
+def test_see_every_third_message(session):
+    agent = _join(session)
+    seen = []
+    for _ in range(30):
+        session.step()
+        seen.append(parse_perception(session.perception(agent)).vision is not None)
+    first = seen.index(True)
+    assert all(seen[i] == ((i - first) % 3 == 0) for i in range(30))
+
+
+def test_action_shows_two_perceptions_later(session):
+    agent = _join(session)
+    session.step()
+    before = parse_perception(session.perception(agent)).joints["hj1"]
+    session.handle_message(agent, b"(he1 3.0)(syn)")  # answers perception k
+    session.step()
+    k1 = parse_perception(session.perception(agent)).joints["hj1"]
+    session.step()
+    k2 = parse_perception(session.perception(agent)).joints["hj1"]
+    assert abs(k1 - before) < 0.5
+    assert k2 - before == pytest.approx(math.degrees(3.0 * 0.02), abs=1.0)
+
+
+def test_standing_robot_stays_up_and_calm(session):
+    agent = _join(session)
+    for _ in range(250):
+        session.step()
+    robot = session.agents[agent].robot
+    x, y, z = robot.torso_position()
+    assert 0.33 < z < 0.42
+    assert math.hypot(x + 2.0, y) < 0.1
+    acc = parse_perception(session.perception(agent)).accelerometer
+    assert acc[2] == pytest.approx(9.81, abs=0.5)
+
+
+def test_ball_given_4_mps_slows_and_stops(session):
+    _trainer(session, "(ball (pos 0 0 0.042) (vel 4 0 0))")
+    session.step()
+    session.step()
+    speeds = []
+    for _ in range(500):
+        session.step()
+        speeds.append(math.hypot(*session.ball.velocity()[:2]))
+    assert speeds[0] > 2.0
+    assert all(b <= a + 1e-3 for a, b in zip(speeds[5:], speeds[6:]))
+    assert speeds[-1] < 0.01
+    assert 1.5 < session.ball.position()[0] < 4.0
+
+
+def test_goal_scores_and_restarts_with_kick_off(session):
+    _join(session, "Alpha", 1)
+    _trainer(session, "(playMode PlayOn)")
+    _trainer(session, "(ball (pos 13.5 0 0.042) (vel 6 0 0))")
+    modes = set()
+    for _ in range(300):
+        session.step()
+        modes.add(session.referee.play_mode)
+        if session.referee.play_mode == "KickOff_Right":
+            break
+    assert "Goal_Left" in modes
+    assert session.referee.score_left == 1
+    assert session.referee.play_mode == "KickOff_Right"
+    x, y, _ = session.ball.position()
+    assert math.hypot(x, y) < 0.05
+
+
+def test_ball_over_side_line_gives_kick_in(session):
+    _join(session, "Alpha", 1)
+    _trainer(session, "(playMode PlayOn)")
+    _trainer(session, "(ball (pos 2 9.5 0.042) (vel 0 3 0))")
+    for _ in range(100):
+        session.step()
+        if session.referee.play_mode.startswith("KickIn"):
+            break
+    assert session.referee.play_mode in ("KickIn_Left", "KickIn_Right")
+    assert session.ball.position()[1] == pytest.approx(10.0, abs=0.1)
+
+
+def test_third_team_refused_but_still_perceives(session):
+    _join(session, "Alpha", 1)
+    _join(session, "Beta", 1, beam=(-3.0, 1.0, 0.0))
+    third = _join(session, "Gamma", 1, beam=(-4.0, 2.0, 0.0))
+    assert session.agents[third].side is None
+    session.step()
+    assert session.perception(third) is not None
+
+
+def test_restored_session_replays_200_cycles_identically(session):
+    agent = _join(session)
+    _trainer(session, "(playMode PlayOn)")
+    _trainer(session, "(ball (pos -1.6 0 0.042) (vel -1 0 0))")
+
+    def run(cycles: int, start: int) -> list[bytes]:
+        out = []
+        for i in range(start, start + cycles):
+            speed = 2.0 * math.sin(i / 7.0)
+            session.handle_message(agent, f"(lle3 {speed:.3f})(rle4 {-speed:.3f})(rae1 1.0)(syn)".encode())
+            session.step()
+            out.append(session.perception(agent))
+        return out
+
+    run(30, 0)
+    snapshot = session.save_state()
+    original = run(200, 30)
+    session.restore_state(snapshot)
+    replay = run(200, 30)
+    assert replay == original
