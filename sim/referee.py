@@ -391,10 +391,12 @@ class BallHoldingMonitor:
     def __init__(self, config: RefereeConfig) -> None:
         self._config = config
         self._states: dict[PlayerKey, _HoldState] = {}
+        self._last_holder: PlayerKey | None = None
 
     def reset(self) -> None:
         """Forget every record (the game stopped; the real server resets its foul counters)."""
         self._states.clear()
+        self._last_holder = None
 
     def held_time(self, player: PlayerKey) -> float:
         """Seconds ``player`` has held the ball in its current record."""
@@ -410,13 +412,17 @@ class BallHoldingMonitor:
     ) -> HoldingFoul | None:
         """Advance one cycle; return the foul if the holder just committed one."""
         holder = self._holder(ball_xy, players)
-        self._age_free_players(dt, None if holder is None else holder.key)
+        held_before, self._last_holder = self._last_holder, None if holder is None else holder.key
+        self._age_free_players(dt, self._last_holder)
         if holder is None:
             return None
         state = self._states.setdefault(holder.key, _HoldState())
         state.held += dt
         state.free = 0.0
-        if previous_ball_xy is not None and self._opponent_near(holder.team, ball_xy, players):
+        # the ball's path counts from one holding cycle to the next only, so that a ball placed
+        # or first seen at a player's feet has not "travelled" from where it was before
+        carried = held_before == holder.key and previous_ball_xy is not None
+        if carried and self._opponent_near(holder.team, ball_xy, players):
             state.marked_path += _distance_xy(ball_xy, previous_ball_xy)
         return self._foul(holder, state)
 
@@ -634,6 +640,8 @@ class Referee:
         if team == "right":
             x, y, deg = -x, -y, deg + 180.0
         yaw = (deg + 180.0) % 360.0 - 180.0
+        if yaw >= 180.0:  # a tiny negative angle wraps to 360.0 in floating point
+            yaw -= 360.0
         return (x + 0.0, y + 0.0, yaw)  # + 0.0 turns a mirrored -0.0 into 0.0
 
     # ---- the cycle ---------------------------------------------------------------------------
