@@ -110,7 +110,8 @@ class RefereeConfig:
     wait_before_kick_off: float = _param(30.0, _NON_NEGATIVE)
     #: SingleHalfTime: the game ends after the first half.
     single_half: bool = _param(False, _FLAG)
-    #: FreeKickDistance: radius opponents must keep at set pieces (and the centre circle).
+    #: FreeKickDistance: radius opponents must keep at set pieces (and the centre circle). The
+    #: referee moves no robot; this is here for the session, which may enforce it.
     free_kick_distance: float = _param(2.0, _NON_NEGATIVE)
     #: GoalKickDist: a goal kick is taken this far in front of the goal line.
     goal_kick_distance: float = _param(1.0, _NON_NEGATIVE)
