@@ -221,11 +221,16 @@ class _Mesh:
 
 @dataclass(eq=False, slots=True)
 class _Transform:
-    """A ``TRF`` node; ``sent`` is the matrix the monitors last received (None: never)."""
+    """A ``TRF`` node; ``sent`` is the matrix the monitors last received (None: never).
+
+    ``dynamic`` transforms (ball, robot bodies) get a new ``matrix`` every message; the others
+    never move, so updates skip comparing them.
+    """
 
     matrix: Matrix4
     children: list[_Node] = field(default_factory=list)
     sent: Matrix4 | None = None
+    dynamic: bool = False
 
 
 _Node = _Transform | _Mesh | _Light
@@ -235,9 +240,13 @@ def _rgba(values: RGBA) -> str:
     return " ".join(format_number(v) for v in values)
 
 
+_SLT_FORMAT = " (SLT " + " ".join(["{:g}"] * 16) + ")"
+
+
 def _slt(matrix: Matrix4) -> str:
-    """`` (SLT m0 .. m15)`` with the matrix written column by column."""
-    return " (SLT " + " ".join(map(format_number, matrix.ravel(order="F").tolist())) + ")"
+    """`` (SLT m0 .. m15)`` with the matrix written column by column (one format call: this
+    is the hot spot of a monitor message)."""
+    return _SLT_FORMAT.format(*matrix.ravel(order="F").tolist())
 
 
 def _write_full(node: _Node, out: list[str]) -> None:
@@ -272,11 +281,16 @@ def _full_mesh(mesh: _Mesh) -> str:
     return "".join(parts)
 
 
+def _moved(matrix: Matrix4, sent: Matrix4) -> bool:
+    """Whether any of the 16 numbers moved more than :data:`SLT_PRECISION` since sent."""
+    return bool((abs(matrix - sent) > SLT_PRECISION).any())
+
+
 def _write_update(node: _Node, out: list[str], with_visibility: bool) -> None:
     """The update form: the same shape, ``(SLT ...)`` only for transforms that moved."""
     if isinstance(node, _Transform):
         sent = node.sent
-        if sent is None or np.abs(node.matrix - sent).max() > SLT_PRECISION:
+        if sent is None or (node.dynamic and _moved(node.matrix, sent)):
             out.append("(nd" + _slt(node.matrix))
             node.sent = np.array(node.matrix, dtype=np.float64)
         else:
@@ -392,7 +406,7 @@ def _ball_node() -> _Transform:
         (BALL_RADIUS, BALL_RADIUS, BALL_RADIUS),
         ("soccerball_rcs-soccerball.png",),
     )
-    return _Transform(translation(0, 0, BALL_RADIUS), [mesh])
+    return _Transform(translation(0, 0, BALL_RADIUS), [mesh], dynamic=True)
 
 
 # ----------------------------------------------------------------------------- robots
@@ -515,7 +529,8 @@ class _Robot:
         self.bodies = {}
         for name in body_names(self.robot_type):
             pose = old[name].matrix if name in old else np.eye(4)
-            node = _Transform(pose, _body_visuals(name, self.robot_type, self.identity))
+            visuals = _body_visuals(name, self.robot_type, self.identity)
+            node = _Transform(pose, visuals, dynamic=True)
             self.bodies[name] = node
             self.root.children.append(node)
 
