@@ -25,7 +25,7 @@ the 21 field-line transforms and, for a robot, the selection-marker cylinder (in
 A robot's subtree: an identity transform (the agent's node, there from the moment the agent
 connected), then one transform per body in the server's order (torso, neck, head, right arm,
 left arm, right leg, left leg) holding the body's world pose. Torso and head meshes sit under
-one more fixed transform, ``setLocalRotation -90 0 180`` (x -90 deg, then z 180 deg), that
+one more fixed transform, ``(setLocalRotation -90 0 180)``, that
 turns the mesh files' axes into the model's; all other meshes hang directly below their body.
 
 Body poses use the model's native frame (``nao-model-facts.md``): x = the robot's right,
