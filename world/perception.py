@@ -479,12 +479,16 @@ def _canonical_vision(see: str) -> Vision:
         if name:
             polar = Polar(float(d), float(p), float(t))
             if player is not None:
+                if name == "team" or name == "id":
+                    raise ValueError("a player part named team or id: left to the general reader")
                 player.parts[name] = polar
                 continue
             if name == "B":
                 vision.ball = polar
             elif name in _LANDMARK_NAMES:
                 landmarks[name] = polar
+            elif name == "L" or name == "P":
+                raise ValueError("a malformed line or player: left to the general reader")
             else:
                 continue  # an object a newer server adds
             if players_before_landmarks < 0:
