@@ -2,14 +2,55 @@
 
 Each :class:`PhysicsWorld` owns its own ``pybullet.DIRECT`` client, so many worlds (sessions)
 live side by side in one process without sharing state.
+
+Save and restore (:meth:`PhysicsWorld.save_state`, :meth:`PhysicsWorld.restore_state`) must let
+a restored world continue bit for bit like the original. Bullet's own ``saveState`` keeps
+positions and velocities but not what the solver carries from step to step: the persistent
+contact manifolds (which contact points exist, their cached impulses) and the motor targets.
+The world therefore
+
+* sorts overlapping pairs (``deterministicOverlappingPairs``) so pair order never depends on
+  history, and switches warm starting off (``warmStartingFactor = 0``): cached impulses then
+  have no influence on the next step;
+* drops every contact manifold on save AND on restore (:meth:`_forget_contacts`), so the
+  original world continues from exactly the state that a restore reproduces;
+* keeps Python-side state (motor targets, sensor memories) of registered holders such as
+  :class:`sim.robot.SimRobot` in the snapshot.
+
+The price: one collision pass per save/restore, and no warm starting (a few more solver
+iterations would compensate; the fidelity benchmark is measured with this setting).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Protocol
 
 import pybullet
 
 CYCLE_SECONDS = 0.02
 GRAVITY = -9.81
+#: Sequential-impulse iterations per step (Bullet's default is 50; the robots' drift-correcting
+#: motors, see ``sim.robot``, stand as still with 10).
+SOLVER_ITERATIONS = 10
+
+
+class StateHolder(Protocol):
+    """An object living in the world that keeps state outside Bullet (e.g. motor targets)."""
+
+    def python_state(self) -> Any: ...
+
+    def before_cycle(self) -> None: ...
+
+    def restore_python_state(self, state: Any) -> None: ...
+
+
+@dataclass(frozen=True)
+class WorldSnapshot:
+    """A saved world: Bullet's in-memory state id plus the holders' Python states."""
+
+    bullet_state_id: int
+    holders: tuple[tuple[int, Any], ...]
 
 
 class PhysicsWorld:
@@ -20,18 +61,74 @@ class PhysicsWorld:
             raise ValueError(f"substeps must be >= 1, got {substeps}")
         self.substeps = substeps
         self.client = pybullet.connect(pybullet.DIRECT)
+        self._holders: dict[int, StateHolder] = {}
         pybullet.setGravity(0.0, 0.0, GRAVITY, physicsClientId=self.client)
         pybullet.setPhysicsEngineParameter(
             fixedTimeStep=CYCLE_SECONDS / substeps,
             numSubSteps=0,
+            numSolverIterations=SOLVER_ITERATIONS,
             deterministicOverlappingPairs=1,
+            warmStartingFactor=0.0,
             physicsClientId=self.client,
         )
 
     def step_cycle(self) -> None:
-        """Advance the world by one server cycle (0.02 s)."""
+        """Advance the world by one server cycle (0.02 s), letting every registered holder
+        (robot) prepare its motors first."""
+        for holder in self._holders.values():
+            holder.before_cycle()
         for _ in range(self.substeps):
             pybullet.stepSimulation(physicsClientId=self.client)
+
+    # ---------------------------------------------------------------- save / restore
+    def register_state_holder(self, holder: StateHolder) -> None:
+        """Include ``holder``'s Python state in every snapshot (robots call this)."""
+        self._holders[id(holder)] = holder
+
+    def unregister_state_holder(self, holder: StateHolder) -> None:
+        self._holders.pop(id(holder), None)
+
+    def save_state(self) -> WorldSnapshot:
+        """Snapshot the world. The live world is normalised too (contact caches dropped), so it
+        continues exactly as a world restored from this snapshot will."""
+        self._forget_contacts()
+        state_id = pybullet.saveState(physicsClientId=self.client)
+        holders = tuple((key, h.python_state()) for key, h in self._holders.items())
+        return WorldSnapshot(state_id, holders)
+
+    def restore_state(self, state: WorldSnapshot) -> None:
+        """Return to ``state`` (taken from this world, with the same bodies present)."""
+        pybullet.restoreState(stateId=state.bullet_state_id, physicsClientId=self.client)
+        for key, holder_state in state.holders:
+            holder = self._holders.get(key)
+            if holder is not None:
+                holder.restore_python_state(holder_state)
+        self._forget_contacts()
+
+    def _forget_contacts(self) -> None:
+        """Empty every persistent contact manifold, leaving no trace of the world's history.
+
+        PyBullet has no call for this, so every movable body is lifted far apart (1 km up, 10 m
+        from each other), one collision pass drops all contact points that are now beyond
+        Bullet's breaking distance, and the poses are put back exactly.
+        """
+        cid = self.client
+        moved = []
+        for i in range(pybullet.getNumBodies(physicsClientId=cid)):
+            body = pybullet.getBodyUniqueId(i, physicsClientId=cid)
+            if pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)[0] == 0.0 and (
+                pybullet.getNumJoints(body, physicsClientId=cid) == 0
+            ):
+                continue  # static: the ground, goals, walls never move
+            pos, orn = pybullet.getBasePositionAndOrientation(body, physicsClientId=cid)
+            moved.append((body, pos, orn))
+        state_id = pybullet.saveState(physicsClientId=cid)
+        for k, (body, _, orn) in enumerate(moved):
+            far = (10.0 * k, 0.0, 1000.0)
+            pybullet.resetBasePositionAndOrientation(body, far, orn, physicsClientId=cid)
+        pybullet.performCollisionDetection(physicsClientId=cid)
+        pybullet.restoreState(stateId=state_id, physicsClientId=cid)
+        pybullet.removeState(state_id, physicsClientId=cid)
 
     def close(self) -> None:
         if self.client >= 0 and pybullet.isConnected(self.client):
