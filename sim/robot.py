@@ -240,7 +240,8 @@ def _quat_to_matrices(quats: np.ndarray) -> np.ndarray:
 
 
 def _rotation(quat: tuple[float, ...]) -> np.ndarray:
-    return _quat_to_matrices(np.asarray([quat], dtype=float))[0]
+    """One rotation matrix (Bullet's C conversion: far cheaper than numpy for a single one)."""
+    return np.array(pybullet.getMatrixFromQuaternion(quat)).reshape(3, 3)
 
 
 # --------------------------------------------------------------------------------------------
@@ -456,16 +457,16 @@ class SimRobot:
         sums: dict[str, list] = {}
         for c in contacts:
             sensor = self._sensor_of_link.get(c[3]) if c[1] == self.body_id else None
-            if sensor is None:
-                continue
-            force = c[9] * np.asarray(c[7]) + c[10] * np.asarray(c[11]) + c[12] * np.asarray(c[13])
-            acc = sums.setdefault(sensor, [np.zeros(3), np.zeros(3), 0.0])
-            weight = abs(c[9])
-            if weight <= 0.0:
-                continue  # a point within Bullet's margin but carrying no load
-            acc[0] += force
-            acc[1] += weight * np.asarray(c[5])
-            acc[2] += weight
+            if sensor is None or c[9] <= 0.0:
+                continue  # another body, or a point within Bullet's margin carrying no load
+            n, f1, f2 = c[9], c[10], c[12]
+            normal, d1, d2, pos = c[7], c[11], c[13], c[5]
+            acc = sums.setdefault(sensor, [0.0] * 7)
+            for i in range(3):
+                acc[i] += n * normal[i] + f1 * d1[i] + f2 * d2[i]
+                acc[3 + i] += n * pos[i]
+            acc[6] += n
+        sums = {k: (np.array(v[:3]), np.array(v[3:6]), v[6]) for k, v in sums.items()}
         if not sums:
             return {}  # no foot touches anything
         links = [self._foot_links[s] for s in sums]
