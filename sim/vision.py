@@ -38,6 +38,7 @@ itself first, then ``others`` in the order given), then the lines in ``FIELD_LIN
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -107,6 +108,7 @@ class VisionSensor:
         self.half_v_deg = view_angle_v_deg / 2.0
         self.sense_lines = sense_lines
         self._calibration = rng.uniform(-CALIBRATION_ERROR, CALIBRATION_ERROR, size=3)
+        self._edges = view_edges(self.half_h_deg, self.half_v_deg)
 
     @property
     def calibration_offset(self) -> NDArray[np.float64]:
@@ -188,8 +190,9 @@ class VisionSensor:
         rel = true_rel + offset
         local = rel @ rotation  # row-wise R^T v: camera-frame coordinates
         phi, theta = _angles(local)
-        distance = np.linalg.norm(true_rel, axis=1)
-        seen = (np.linalg.norm(rel, axis=1) > MIN_DISTANCE) & self._in_cone(phi, theta)
+        distance = np.sqrt(np.einsum("ij,ij->i", true_rel, true_rel))
+        far = np.einsum("ij,ij->i", rel, rel) > MIN_DISTANCE**2
+        seen = far & self._in_cone(phi, theta)
         distance, phi, theta = self._noisy(distance, phi, theta)
         return [
             Polar(float(d), float(p), float(t)) if s else None
@@ -222,10 +225,13 @@ class VisionSensor:
     ) -> list[tuple[Polar, Polar]]:
         """The field lines clipped to the view, as (begin, end) polars in ``FIELD_LINES`` order."""
         local = (_LINE_POINTS - position + offset) @ rotation
-        begin, end, keep = clip_segments(local[:, 0], local[:, 1], self.half_h_deg, self.half_v_deg)
+        begin, end, keep = clip_segments(
+            local[:, 0], local[:, 1], self.half_h_deg, self.half_v_deg, self._edges
+        )
         ends = np.stack([begin[keep], end[keep]], axis=1)  # (kept, 2, 3)
         phi, theta = _angles(ends)
-        distance, phi, theta = self._noisy(np.linalg.norm(ends, axis=2), phi, theta)
+        distance = np.sqrt(np.einsum("ijk,ijk->ij", ends, ends))
+        distance, phi, theta = self._noisy(distance, phi, theta)
         return [
             (
                 Polar(float(distance[i, 0]), float(phi[i, 0]), float(theta[i, 0])),
@@ -259,6 +265,7 @@ def clip_segments(
     end: NDArray[np.float64],
     half_h_deg: float,
     half_v_deg: float,
+    edges: ViewEdges | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
     """Clip camera-frame segments (``begin``, ``end``: (n, 3)) to the view as the real server
     does; returns the new end points and which segments are seen at all.
@@ -268,7 +275,8 @@ def clip_segments(
     edges of the view rectangle (top, bottom, left, right; at most the first two crossings
     count). Two crossings replace both ends (first crossing = begin); one crossing replaces the
     end that was not visible (the begin, if neither was). The crossing points are put back on
-    the 3D segment, so their distance is a true distance.
+    the 3D segment, so their distance is a true distance. ``edges``: ``view_edges`` of the
+    same half angles, precomputed (optional).
     """
     visible = _visible_points(np.stack([begin, end], axis=1), half_h_deg, half_v_deg)
     keep = visible[:, 0] & visible[:, 1]
@@ -279,7 +287,9 @@ def clip_segments(
     vis_b, vis_e = visible[rows, 0], visible[rows, 1]
     near_b, near_e = _cut_at_near_plane(begin[rows], end[rows])
     front = (near_b[:, 1] > 0.0) & (near_e[:, 1] > 0.0)
-    crossings, hit = _edge_crossings(near_b, near_e, front, half_h_deg, half_v_deg)
+    if edges is None:
+        edges = view_edges(half_h_deg, half_v_deg)
+    crossings, hit = _edge_crossings(near_b, near_e, front, edges)
 
     # first and second crossing in edge order (a stable sort puts hits first, in edge order)
     order = np.argsort(~hit, axis=1, kind="stable")
@@ -310,25 +320,33 @@ def _cut_at_near_plane(
     return near_b, near_e
 
 
+ViewEdges = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+
+
+def view_edges(half_h_deg: float, half_v_deg: float) -> ViewEdges:
+    """The view rectangle on the image plane (y = FOCAL_LENGTH), edges in the server's order
+    top, bottom, left, right: start points (4, 2) and directions (4, 2) in image (x, z), and the
+    normals (4, 3) of the planes through the camera and each edge (X . normal == 0 on it)."""
+    f = FOCAL_LENGTH
+    rx = math.tan(math.radians(half_h_deg)) * f
+    ry = math.tan(math.radians(half_v_deg)) * f
+    starts = np.array([(-rx, ry), (-rx, -ry), (-rx, ry), (rx, ry)])
+    directions = np.array([(2 * rx, 0.0), (2 * rx, 0.0), (0.0, -2 * ry), (0.0, -2 * ry)])
+    normals = np.array([(0.0, -ry, f), (0.0, ry, f), (f, rx, 0.0), (f, -rx, 0.0)])
+    return starts, directions, normals
+
+
 def _edge_crossings(
     begin: NDArray[np.float64],
     end: NDArray[np.float64],
     mask: NDArray[np.bool_],
-    half_h_deg: float,
-    half_v_deg: float,
+    edges: ViewEdges,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Where each projected segment crosses each edge of the view rectangle on the image plane
     (edges in the server's order top, bottom, left, right): the 3D crossing points (n, 4, 3)
     and whether each crossing exists (n, 4). Rows outside ``mask`` never cross."""
     f = FOCAL_LENGTH
-    rx = np.tan(np.radians(half_h_deg)) * f
-    ry = np.tan(np.radians(half_v_deg)) * f
-    # per edge: start point and direction on the image plane (x, z), and the normal of the
-    # plane through the camera and the edge (a 3D point X lies on it when X . normal == 0)
-    starts = np.array([(-rx, ry), (-rx, -ry), (-rx, ry), (rx, ry)])
-    directions = np.array([(2 * rx, 0.0), (2 * rx, 0.0), (0.0, -2 * ry), (0.0, -2 * ry)])
-    normals = np.array([(0.0, -ry, f), (0.0, ry, f), (f, rx, 0.0), (f, -rx, 0.0)])
-
+    starts, directions, normals = edges
     n = begin.shape[0]
     crossings = np.zeros((n, 4, 3))
     hit = np.zeros((n, 4), dtype=bool)
