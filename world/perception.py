@@ -415,11 +415,11 @@ _ACC = re.compile(rf"\(ACC \(n {_A}\) \(a {_C} {_C} {_C}\)\)")
 _HJ = re.compile(rf"\(HJ \(n {_C}\) \(ax {_C}\)\)")
 _FRP = re.compile(rf"\(FRP \(n {_C}\) \(c {_C} {_C} {_C}\) \(f {_C} {_C} {_C}\)\)")
 _CPOL = rf"\(pol {_C} {_C} {_C}\)"
-#: inside See: a named polar (landmark, ball or body part) | a line | a player header | the
-#: parenthesis closing a player
-_SEE_TOKEN = re.compile(
-    rf"\({_C} {_CPOL}\)|\(L {_CPOL} {_CPOL}\)|\(P \(team {_C}\) \(id {_C}\)|(\))"
-)
+_NAMED_POLAR = rf"\({_A} {_POL}\)"
+#: inside See: a whole player (team, id, its parts) | a landmark or the ball (lines don't match)
+_SEE_OBJECT = re.compile(rf"\(P \(team {_C}\) \(id {_C}\)((?: {_NAMED_POLAR})*)\)|\({_C} {_CPOL}\)")
+_PLAYER_PART = re.compile(rf"\({_C} {_CPOL}\)")
+_LINE = re.compile(rf"\(L {_CPOL} {_CPOL}\)")
 
 
 def _parse_canonical(text: str) -> Perception:
@@ -472,36 +472,31 @@ def _canonical_vision(see: str) -> Vision:
     vision = Vision()
     landmarks = vision.landmarks
     players = vision.players
-    lines = vision.lines
-    player: SeenPlayer | None = None
     players_before_landmarks = -1
-    for name, d, p, t, d1, p1, t1, d2, p2, t2, team, unum, close in _SEE_TOKEN.findall(see):
-        if name:
-            polar = Polar(float(d), float(p), float(t))
-            if player is not None:
-                if name == "team" or name == "id":
-                    raise ValueError("a player part named team or id: left to the general reader")
-                player.parts[name] = polar
-                continue
-            if name == "B":
-                vision.ball = polar
-            elif name in _LANDMARK_NAMES:
-                landmarks[name] = polar
-            elif name == "L" or name == "P":
-                raise ValueError("a malformed line or player: left to the general reader")
-            else:
-                continue  # an object a newer server adds
-            if players_before_landmarks < 0:
-                players_before_landmarks = len(players)
-        elif d1:
-            lines.append(
-                (Polar(float(d1), float(p1), float(t1)), Polar(float(d2), float(p2), float(t2)))
-            )
-        elif team:
-            player = SeenPlayer(team, int(unum))
-            players.append(player)
-        elif close:
-            player = None  # the end of a player, or of See itself
+    for team, unum, parts, name, d, p, t in _SEE_OBJECT.findall(see):
+        if team:
+            polars = {
+                part: Polar(float(pd), float(pp), float(pt))
+                for part, pd, pp, pt in _PLAYER_PART.findall(parts)
+            }
+            if "team" in polars or "id" in polars:
+                raise ValueError("a player part named team or id: left to the general reader")
+            players.append(SeenPlayer(team, int(unum), polars))
+            continue
+        if name == "B":
+            vision.ball = Polar(float(d), float(p), float(t))
+        elif name in _LANDMARK_NAMES:
+            landmarks[name] = Polar(float(d), float(p), float(t))
+        elif name == "L" or name == "P":
+            raise ValueError("a malformed line or player: left to the general reader")
+        else:
+            continue  # an object a newer server adds
+        if players_before_landmarks < 0:
+            players_before_landmarks = len(players)
+    vision.lines = [
+        (Polar(float(d1), float(p1), float(t1)), Polar(float(d2), float(p2), float(t2)))
+        for d1, p1, t1, d2, p2, t2 in _LINE.findall(see)
+    ]
     vision.players_before_landmarks = max(players_before_landmarks, 0)
     return vision
 
