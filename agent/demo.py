@@ -42,9 +42,16 @@ def _wave(cycle: int) -> dict[str, float]:
     arm = 2.0 * math.cos(phase)
     knee = 0.4 * math.cos(phase)
     return {
-        "rae1": -arm, "lae1": -arm, "rae2": 0.0, "lae2": 0.0,
-        "lle3": knee, "rle3": knee, "lle4": -2 * knee, "rle4": -2 * knee,
-        "lle5": knee, "rle5": knee,
+        "rae1": -arm,
+        "lae1": -arm,
+        "rae2": 0.0,
+        "lae2": 0.0,
+        "lle3": knee,
+        "rle3": knee,
+        "lle4": -2 * knee,
+        "rle4": -2 * knee,
+        "lle5": knee,
+        "rle5": knee,
     }
 
 

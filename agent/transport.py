@@ -13,7 +13,7 @@ from typing import Protocol
 from world.framing import FrameDecoder, frame
 
 
-class ServerGone(ConnectionError):
+class ServerGoneError(ConnectionError):
     """The server closed the connection or cannot be reached; the message says which."""
 
 
@@ -32,7 +32,7 @@ class TcpTransport:
         try:
             self._sock = socket.create_connection((host, port), timeout=timeout)
         except OSError as exc:
-            raise ServerGone(f"cannot connect to a server at {host}:{port}: {exc}") from None
+            raise ServerGoneError(f"cannot connect to a server at {host}:{port}: {exc}") from None
         self._sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         self._decoder = FrameDecoder()
         self._ready: list[bytes] = []
@@ -42,7 +42,7 @@ class TcpTransport:
         try:
             self._sock.sendall(frame(payload))
         except OSError as exc:
-            raise ServerGone(f"server {self.address} went away: {exc}") from None
+            raise ServerGoneError(f"server {self.address} went away: {exc}") from None
 
     def receive(self) -> bytes:
         """The next complete message (blocks)."""
@@ -50,11 +50,11 @@ class TcpTransport:
             try:
                 data = self._sock.recv(65536)
             except TimeoutError:
-                raise ServerGone(f"server {self.address} sent nothing for too long") from None
+                raise ServerGoneError(f"server {self.address} sent nothing for too long") from None
             except OSError as exc:
-                raise ServerGone(f"server {self.address} went away: {exc}") from None
+                raise ServerGoneError(f"server {self.address} went away: {exc}") from None
             if not data:
-                raise ServerGone(f"server {self.address} closed the connection")
+                raise ServerGoneError(f"server {self.address} closed the connection")
             self._ready.extend(self._decoder.feed(data))
         return self._ready.pop(0)
 

@@ -56,7 +56,7 @@ def inprocess_cycles_per_s(cycles: int, with_perception: bool) -> float:
     session.handle_message(agent, b"(init (unum 1)(teamname Bench))(syn)")
     session.step()
     session.handle_message(agent, b"(beam -2 0 0)(syn)")
-    for i in range(20):
+    for _ in range(20):
         session.step()
     start = time.perf_counter()
     for i in range(cycles):
@@ -76,8 +76,17 @@ def _free_port() -> int:
 
 def _start_server(port: int, monitor_port: int) -> subprocess.Popen:
     command = [
-        sys.executable, "-m", "agent.cli", "--log-level", "warning", "server", "--sync",
-        "--port", str(port), "--monitor-port", str(monitor_port),
+        sys.executable,
+        "-m",
+        "agent.cli",
+        "--log-level",
+        "warning",
+        "server",
+        "--sync",
+        "--port",
+        str(port),
+        "--monitor-port",
+        str(monitor_port),
     ]
     process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL)
     deadline = time.monotonic() + 30

@@ -1,1 +1,3 @@
-"""Training environments, PPO training, evaluation and studies. Never imported by a playing agent."""
+"""Training environments, PPO training, evaluation and studies.
+
+Never imported by a playing agent."""

@@ -1,1 +1,3 @@
-"""The PyBullet stand-in for SimSpark/rcssserver3d: robot model, field, referee, sessions, server."""
+"""The PyBullet stand-in for SimSpark/rcssserver3d.
+
+Robot model, field, referee, sessions, TCP server."""

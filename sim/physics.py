@@ -12,8 +12,9 @@ The world therefore
 * sorts overlapping pairs (``deterministicOverlappingPairs``) so pair order never depends on
   history, and switches warm starting off (``warmStartingFactor = 0``): cached impulses then
   have no influence on the next step;
-* drops every contact manifold on save AND on restore (:meth:`_forget_contacts`), so the
-  original world continues from exactly the state that a restore reproduces;
+* drops every contact manifold on save AND on restore (:meth:`_forget_contacts`),
+  self-collision pairs inside a robot included, so the original world continues from exactly
+  the state that a restore reproduces;
 * keeps Python-side state (motor targets, sensor memories) of registered holders such as
   :class:`sim.robot.SimRobot` in the snapshot.
 
@@ -33,6 +34,9 @@ GRAVITY = -9.81
 #: Sequential-impulse iterations per step (Bullet's default is 50; the robots' drift-correcting
 #: motors, see ``sim.robot``, stand as still with 10).
 SOLVER_ITERATIONS = 10
+#: Bullet's collision filter of dynamic bodies (btBroadphaseProxy::DefaultFilter, AllFilter)
+DYNAMIC_FILTER_GROUP = 1
+ALL_FILTER_MASK = -1
 
 
 class StateHolder(Protocol):
@@ -108,27 +112,23 @@ class PhysicsWorld:
     def _forget_contacts(self) -> None:
         """Empty every persistent contact manifold, leaving no trace of the world's history.
 
-        PyBullet has no call for this, so every movable body is lifted far apart (1 km up, 10 m
-        from each other), one collision pass drops all contact points that are now beyond
-        Bullet's breaking distance, and the poses are put back exactly.
+        PyBullet has no call for this, but setting a link's collision filter removes its
+        collision object from the broadphase and adds it again, which destroys every pair (and
+        contact manifold) it was part of, self-collision pairs inside a robot included. The
+        filter is set to the value the loaders give dynamic bodies (group 1, mask all), so
+        collisions are unchanged; static bodies (ground, goals, walls) lose their pairs with
+        the moving bodies all the same.
         """
         cid = self.client
-        moved = []
         for i in range(pybullet.getNumBodies(physicsClientId=cid)):
             body = pybullet.getBodyUniqueId(i, physicsClientId=cid)
-            if pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)[0] == 0.0 and (
-                pybullet.getNumJoints(body, physicsClientId=cid) == 0
-            ):
-                continue  # static: the ground, goals, walls never move
-            pos, orn = pybullet.getBasePositionAndOrientation(body, physicsClientId=cid)
-            moved.append((body, pos, orn))
-        state_id = pybullet.saveState(physicsClientId=cid)
-        for k, (body, _, orn) in enumerate(moved):
-            far = (10.0 * k, 0.0, 1000.0)
-            pybullet.resetBasePositionAndOrientation(body, far, orn, physicsClientId=cid)
-        pybullet.performCollisionDetection(physicsClientId=cid)
-        pybullet.restoreState(stateId=state_id, physicsClientId=cid)
-        pybullet.removeState(state_id, physicsClientId=cid)
+            links = pybullet.getNumJoints(body, physicsClientId=cid)
+            if links == 0 and pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)[0] == 0.0:
+                continue  # static: keeps its own filter
+            for link in range(-1, links):
+                pybullet.setCollisionFilterGroupMask(
+                    body, link, DYNAMIC_FILTER_GROUP, ALL_FILTER_MASK, physicsClientId=cid
+                )
 
     def close(self) -> None:
         if self.client >= 0 and pybullet.isConnected(self.client):

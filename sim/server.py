@@ -15,6 +15,7 @@ mid-frame is logged and that client dropped; every other agent keeps getting its
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import logging
 import selectors
@@ -195,7 +196,9 @@ class SoccerServer:
         try:
             self.session.handle_message(client.agent_id, payload)
         except Exception:  # a bug must not take the other agents down with it
-            log.exception("agent %d: message %r could not be handled", client.agent_id, payload[:80])
+            log.exception(
+                "agent %d: message %r could not be handled", client.agent_id, payload[:80]
+            )
         if self.session.syn_received(payload):
             client.synced = True
 
@@ -223,10 +226,8 @@ class SoccerServer:
         else:
             log.info("%s %s disconnected", client.kind, client.address)
         self.clients.pop(client.sock, None)
-        try:
+        with contextlib.suppress(KeyError, ValueError):
             self.selector.unregister(client.sock)
-        except (KeyError, ValueError):
-            pass
         client.sock.close()
         if client.agent_id is not None:
             self.session.remove_agent(client.agent_id)

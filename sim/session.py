@@ -138,7 +138,11 @@ class Session:
         """Register a new connection; its robot appears when it sends ``scene``."""
         agent_id = self._next_agent_id
         self._next_agent_id += 1
-        self.agents[agent_id] = AgentSlot(agent_id)
+        slot = AgentSlot(agent_id)
+        self.agents[agent_id] = slot
+        # the real server shows a connected agent without a robot as an empty node
+        self.scene.add_pending_robot(slot.robot_id)
+        self._full_state_requested = True
         return agent_id
 
     def remove_agent(self, agent_id: int) -> None:
@@ -345,20 +349,22 @@ class Session:
             return
         if not self.referee.may_beam(slot.side):
             return
+        # the beam is given in the team's own frame; clamp_beam answers in world coordinates
         x, y, deg = self.referee.clamp_beam(slot.side, x, y, deg)
         if self.config.beam_noise:
             noise_xy = self.config.beam_noise_xy
             x += float(self.rng.uniform(-noise_xy, noise_xy))
             y += float(self.rng.uniform(-noise_xy, noise_xy))
             deg += float(self.rng.uniform(-1, 1) * self.config.beam_noise_angle_deg)
-        if slot.side == "right":  # each team's beam frame faces the opponent goal
-            x, y, deg = -x, -y, deg + 180.0
         slot.robot.place(x, y, BEAM_HEIGHT, yaw_deg=deg)
 
     def _say(self, slot: AgentSlot, message: str) -> None:
         if len(message) > MAX_SAY_LENGTH or any(c in message for c in "() "):
-            log.warning("agent %d: say %r refused (<= 20 chars, no spaces or parentheses)",
-                        slot.agent_id, message)
+            log.warning(
+                "agent %d: say %r refused (<= 20 chars, no spaces or parentheses)",
+                slot.agent_id,
+                message,
+            )
             return
         self._said.append((slot, message))
 
@@ -426,9 +432,7 @@ class Session:
     def _ball_touches(self, robots: list[AgentSlot]) -> list[tuple[str, int]]:
         touching = self.ball.touching_bodies()
         return [
-            (s.side, s.unum)
-            for s in robots
-            if s.side is not None and s.robot.body_id in touching
+            (s.side, s.unum) for s in robots if s.side is not None and s.robot.body_id in touching
         ]
 
     def _perceive(
@@ -482,19 +486,21 @@ class Session:
                     continue
                 bearing = math.degrees(math.atan2(offset[1], offset[0]))
                 direction = _wrap_deg(bearing - slot.robot.torso_yaw_deg())
-            result.append(Heard(speaker.team_name or "", self.referee.game_time, direction, message))
+            result.append(
+                Heard(speaker.team_name or "", self.referee.game_time, direction, message)
+            )
         return result
 
     def _monitor_header(self) -> MonitorHeader:
-        names = self.referee.team_names
+        team_left, team_right = self.referee.team_names
         return MonitorHeader(
             time=self.time,
             half=self.referee.half,
             score_left=self.referee.score_left,
             score_right=self.referee.score_right,
             play_mode=self.referee.play_mode,
-            team_left=names.get("left"),
-            team_right=names.get("right"),
+            team_left=team_left,
+            team_right=team_right,
         )
 
 
@@ -520,9 +526,7 @@ def _slot_state(slot: AgentSlot) -> dict:
 
 
 def _has_actions(message: EffectorMessage) -> bool:
-    return bool(
-        message.init or message.beam or message.joint_speeds or message.say is not None
-    )
+    return bool(message.init or message.beam or message.joint_speeds or message.say is not None)
 
 
 def _wrap_deg(angle: float) -> float:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import logging
 import socket
 import struct
@@ -126,7 +127,7 @@ def test_one_joint_speed_moves_that_joint_only_within_limits(server):
             angles.append(parse_perception(client.receive()).joints)
             client.send(b"(syn)")
         # after the two-cycle latency the shoulder turns at -2 rad/s = -2.29 deg per cycle
-        rates = [b["raj1"] - a["raj1"] for a, b in zip(angles[2:20], angles[3:21])]
+        rates = [b["raj1"] - a["raj1"] for a, b in itertools.pairwise(angles[2:21])]
         assert sum(rates) / len(rates) == pytest.approx(-2.29, abs=0.25)
         for name, value in angles[-1].items():
             if name != "raj1":
@@ -138,17 +139,32 @@ def test_one_joint_speed_moves_that_joint_only_within_limits(server):
 
 
 def _good_agent_keeps_cycling(server, bad_action) -> None:
+    """Run ``bad_action`` while a well-behaved agent keeps answering every cycle (in a thread);
+    the good agent must get every cycle, before, during and after the misbehaviour."""
     good = Client(server.port)
-    try:
-        good.join("Good", 1)
-        bad_action()
-        times = []
-        for _ in range(15):
+    good.join("Good", 1)
+    times: list[float] = []
+    done = threading.Event()
+
+    def keep_cycling() -> None:
+        while not done.is_set():
             good.send(b"(syn)")
             times.append(parse_perception(good.receive()).time)
-        assert all(b == pytest.approx(a + 0.02) for a, b in zip(times, times[1:]))
+
+    thread = threading.Thread(target=keep_cycling, daemon=True)
+    thread.start()
+    try:
+        bad_action()
+        count = len(times)
+        deadline = time.monotonic() + 20
+        while len(times) < count + 15 and time.monotonic() < deadline:
+            time.sleep(0.01)
     finally:
+        done.set()
+        thread.join(timeout=10)
         good.close()
+    assert len(times) >= count + 15, "the good agent stopped getting cycles"
+    assert all(b == pytest.approx(a + 0.02) for a, b in itertools.pairwise(times))
 
 
 def test_garbage_and_unknown_effectors_are_logged_and_ignored(server, caplog):
@@ -159,12 +175,12 @@ def test_garbage_and_unknown_effectors_are_logged_and_ignored(server, caplog):
         bad.send(b"\x00\xffgarbage((((")
         bad.send(b"(he1 1.0)(xyz 3)(lle7 1.0)(beam 1)(syn)")
         bad.receive()
+        bad.close()
 
     with caplog.at_level(logging.WARNING):
         _good_agent_keeps_cycling(server, misbehave)
     text = caplog.text
     assert "xyz" in text and "lle7" in text
-    bad.close()
 
 
 def test_oversized_length_prefix_drops_that_client(server, caplog):
@@ -200,7 +216,8 @@ def test_monitor_gets_full_state_then_updates_and_trainer_moves_ball(server):
         first = monitor.receive()
         assert first.startswith(b"((FieldLength 30)")
         assert b"(RSG 0 1)" in first
-        monitor.send(b"(ball (pos 1 2 0.042) (vel 0 0 0))")
+        # the referee keeps the ball on the centre spot before kick-off, as the real server
+        monitor.send(b"(playMode PlayOn)(ball (pos 1 2 0.042) (vel 0 0 0))")
         for _ in range(6):
             agent.send(b"(syn)")
             agent.receive()

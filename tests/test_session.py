@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import pytest
@@ -99,7 +100,7 @@ def test_ball_given_4_mps_slows_and_stops(session):
         session.step()
         speeds.append(math.hypot(*session.ball.velocity()[:2]))
     assert speeds[0] > 2.0
-    assert all(b <= a + 1e-3 for a, b in zip(speeds[5:], speeds[6:]))
+    assert all(b <= a + 1e-3 for a, b in itertools.pairwise(speeds[5:]))
     assert speeds[-1] < 0.01
     assert 1.5 < session.ball.position()[0] < 4.0
 
@@ -121,15 +122,21 @@ def test_goal_scores_and_restarts_with_kick_off(session):
     assert math.hypot(x, y) < 0.05
 
 
-def test_ball_over_side_line_gives_kick_in(session):
-    _join(session, "Alpha", 1)
+def test_ball_over_side_line_gives_kick_in_to_the_other_team(session):
+    _join(session, "Alpha", 1, beam=(-2.0, 9.0, 0.0))  # facing +x, left foot near y = 9.06
     _trainer(session, "(playMode PlayOn)")
-    _trainer(session, "(ball (pos 2 9.5 0.042) (vel 0 3 0))")
+    # roll the ball gently against the robot's left foot: the left team touches it last ...
+    _trainer(session, "(ball (pos -1.98 9.35 0.042) (vel 0 -0.6 0))")
+    for _ in range(40):
+        session.step()
+    assert session.referee.last_touch == ("left", 1)
+    # ... then send it over the side line
+    _trainer(session, "(ball (vel 0 3 0))")
     for _ in range(100):
         session.step()
-        if session.referee.play_mode.startswith("KickIn"):
+        if session.referee.play_mode != "PlayOn":
             break
-    assert session.referee.play_mode in ("KickIn_Left", "KickIn_Right")
+    assert session.referee.play_mode == "KickIn_Right"
     assert session.ball.position()[1] == pytest.approx(10.0, abs=0.1)
 
 
@@ -151,7 +158,9 @@ def test_restored_session_replays_200_cycles_identically(session):
         out = []
         for i in range(start, start + cycles):
             speed = 2.0 * math.sin(i / 7.0)
-            session.handle_message(agent, f"(lle3 {speed:.3f})(rle4 {-speed:.3f})(rae1 1.0)(syn)".encode())
+            session.handle_message(
+                agent, f"(lle3 {speed:.3f})(rle4 {-speed:.3f})(rae1 1.0)(syn)".encode()
+            )
             session.step()
             out.append(session.perception(agent))
         return out
