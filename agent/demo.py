@@ -22,15 +22,17 @@ def run_demo_client(host: str, port: int, cycles: int = 250, print_every: int = 
         transport.receive()
         transport.send(write_effectors(EffectorMessage(init=(1, "NaoDemo"), syn=True)))
         received = 0
+        last_ball = "not seen yet"
         for cycle in range(cycles):
             perception = parse_perception(transport.receive())
             received += 1
+            last_ball = _ball_text(perception) or last_ball
             action = EffectorMessage(joint_speeds=_wave(cycle), syn=True)
             if cycle == 2:
                 action.beam = (-1.0, 0.0, 0.0)
             transport.send(write_effectors(action))
             if cycle % print_every == 0:
-                print(_describe(perception))
+                print(_describe(perception, last_ball))
         return received
     finally:
         transport.close()
@@ -55,12 +57,18 @@ def _wave(cycle: int) -> dict[str, float]:
     }
 
 
-def _describe(p: Perception) -> str:
+def _ball_text(p: Perception) -> str | None:
+    """The ball as the last image showed it, or None when this message has no image of it."""
+    if p.vision is None:
+        return None
+    if p.vision.ball is None:
+        return "not in view"
+    b = p.vision.ball
+    return f"{b.distance:.2f} m at {b.phi:+.1f} deg"
+
+
+def _describe(p: Perception, ball: str) -> str:
     gs = p.game_state
-    ball = "not in view"
-    if p.vision is not None and p.vision.ball is not None:
-        b = p.vision.ball
-        ball = f"{b.distance:.2f} m at {b.phi:+.1f} deg"
     feet = ",".join(sorted(p.force_resistance)) or "none"
     return (
         f"t={p.time:6.2f}  {gs.play_mode:<13} shoulder={p.joints.get('raj1', 0):+7.2f} deg "

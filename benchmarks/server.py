@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import selectors
 import socket
 import subprocess
 import sys
@@ -101,53 +102,64 @@ def _start_server(port: int, monitor_port: int) -> subprocess.Popen:
 
 
 class _Agent:
-    def __init__(self, port: int, robot_type: int, team: str, unum: int) -> None:
+    """One scripted client: answers every perception, as a real agent process would."""
+
+    def __init__(self, port: int, robot_type: int, team: str, unum: int, index: int) -> None:
         self.sock = socket.create_connection(("127.0.0.1", port))
         self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         self.decoder = FrameDecoder()
-        self.ready: list[bytes] = []
-        self.robot_type, self.team, self.unum = robot_type, team, unum
+        self.robot_type, self.team, self.unum, self.index = robot_type, team, unum, index
+        self.perceptions = 0
+        self.ready = False  # its identity has arrived and it has beamed
+        self.send(SCENE.format(robot_type).encode())
 
     def send(self, payload: bytes) -> None:
         self.sock.sendall(frame(payload))
 
-    def receive(self) -> bytes:
-        while not self.ready:
-            self.ready.extend(self.decoder.feed(self.sock.recv(65536)))
-        return self.ready.pop(0)
+    def answer(self, message: bytes, moving: bool) -> None:
+        self.perceptions += 1
+        if self.perceptions == 1:
+            self.send(f"(init (unum {self.unum})(teamname {self.team}))(syn)".encode())
+        elif not self.ready and b"(unum " in message:
+            self.ready = True
+            self.send(f"(beam {-1 - self.unum} {self.unum % 4 - 2} 0)(syn)".encode())
+        elif moving:
+            parse_perception(message)  # what an agent does with every message
+            self.send(_joint_command(self.perceptions, self.index))
+        else:
+            self.send(b"(syn)")
 
 
 def networked22(cycles: int) -> float:
+    """Cycles per second with 22 agents joining one at a time, then all moving their joints."""
     port, monitor_port = _free_port(), _free_port()
     server = _start_server(port, monitor_port)
+    selector = selectors.DefaultSelector()
+    roster = [(team, unum, t) for team in ("Left", "Right") for unum, t in enumerate(TEAM_TYPES, 1)]
     agents: list[_Agent] = []
+    start_at = end_at = None
+    start = 0.0
     try:
-        for team in ("Left", "Right"):
-            for unum, robot_type in enumerate(TEAM_TYPES, start=1):
-                agent = _Agent(port, robot_type, team, unum)
-                # real clients finish their handshake one at a time
-                agent.send(SCENE.format(robot_type).encode())
-                agent.receive()
-                agent.send(f"(init (unum {unum})(teamname {team}))(syn)".encode())
-                for other in agents:
-                    other.send(b"(syn)")
+        while end_at is None or agents[0].perceptions < end_at:
+            if len(agents) < len(roster) and (not agents or agents[-1].ready):
+                team, unum, robot_type = roster[len(agents)]
+                agent = _Agent(port, robot_type, team, unum, len(agents))
+                selector.register(agent.sock, selectors.EVENT_READ, agent)
                 agents.append(agent)
-                for a in agents:
-                    a.receive()
-        for agent in agents:
-            agent.send(f"(beam {-1 - agent.unum} {agent.unum % 4 - 2} 0)(syn)".encode())
-        for _ in range(10):
-            for agent in agents:
-                agent.receive()
-            for agent in agents:
-                agent.send(b"(syn)")
-        start = time.perf_counter()
-        for cycle in range(cycles):
-            for i, agent in enumerate(agents):
-                parse_perception(agent.receive())
-                agent.send(_joint_command(cycle, i))
-        elapsed = time.perf_counter() - start
-        return cycles / elapsed
+            if start_at is None and len(agents) == len(roster) and agents[-1].ready:
+                start_at = agents[0].perceptions + 20  # let everyone land from the beam
+                end_at = start_at + cycles
+            moving = start_at is not None and agents[0].perceptions >= start_at
+            if moving and not start:
+                start = time.perf_counter()
+            for key, _ in selector.select(timeout=10):
+                agent = key.data
+                data = agent.sock.recv(1 << 20)
+                if not data:
+                    raise RuntimeError("the server closed a connection")
+                for message in agent.decoder.feed(data):
+                    agent.answer(message, moving)
+        return cycles / (time.perf_counter() - start)
     finally:
         for agent in agents:
             agent.sock.close()

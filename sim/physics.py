@@ -46,6 +46,8 @@ class StateHolder(Protocol):
 
     def before_cycle(self) -> None: ...
 
+    def before_substep(self, fraction: float) -> None: ...
+
     def restore_python_state(self, state: Any) -> None: ...
 
 
@@ -64,6 +66,7 @@ class PhysicsWorld:
         if substeps < 1:
             raise ValueError(f"substeps must be >= 1, got {substeps}")
         self.substeps = substeps
+        self._current_substeps = substeps
         self.client = pybullet.connect(pybullet.DIRECT)
         self._holders: dict[int, StateHolder] = {}
         pybullet.setGravity(0.0, 0.0, GRAVITY, physicsClientId=self.client)
@@ -76,12 +79,22 @@ class PhysicsWorld:
             physicsClientId=self.client,
         )
 
-    def step_cycle(self) -> None:
+    def step_cycle(self, substeps: int | None = None) -> None:
         """Advance the world by one server cycle (0.02 s), letting every registered holder
-        (robot) prepare its motors first."""
-        for holder in self._holders.values():
+        (robot) prepare its motors first. ``substeps`` overrides the world's count for this
+        cycle (the session refines cycles in which a fast foot nears the ball)."""
+        substeps = substeps or self.substeps
+        if substeps != self._current_substeps:
+            pybullet.setPhysicsEngineParameter(
+                fixedTimeStep=CYCLE_SECONDS / substeps, physicsClientId=self.client
+            )
+            self._current_substeps = substeps
+        holders = list(self._holders.values())
+        for holder in holders:
             holder.before_cycle()
-        for _ in range(self.substeps):
+        for k in range(substeps):
+            for holder in holders:
+                holder.before_substep(k / substeps)
             pybullet.stepSimulation(physicsClientId=self.client)
 
     # ---------------------------------------------------------------- save / restore

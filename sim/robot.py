@@ -40,6 +40,12 @@ from world.perception import ForceResistance
 
 Vec3 = tuple[float, float, float]
 
+#: Bodies that strike the ball; their speed decides how finely the session substeps a cycle.
+STRIKING_BODIES = ("lfoot", "rfoot", "lshank", "rshank", "ltoe", "rtoe")
+#: Reach from a striking body's centre to its farthest point (half a foot's length), for the
+#: rotational part of its surface speed.
+STRIKING_REACH = 0.08
+
 
 @dataclass(frozen=True)
 class RobotPhysics:
@@ -277,9 +283,13 @@ class SimRobot:
             str(urdf_path(self.spec)), position, flags=flags, physicsClientId=self._client
         )
         self._index_links()
+        self._striking_links = [
+            self._link_of[name] for name in STRIKING_BODIES if name in self._link_of
+        ]
         self._configure_dynamics()
         self._speeds = np.zeros(len(self.spec.joints))
         self._targets = np.zeros(len(self.spec.joints))
+        self._cycle_start = self._targets
         self._lower = np.radians([j.min_deg for j in self.spec.joints])
         self._upper = np.radians([j.max_deg for j in self.spec.joints])
         self._prev_velocity = np.zeros(3)
@@ -336,15 +346,15 @@ class SimRobot:
                 bid, bid, self._link_of[a], self._link_of[b], 0, physicsClientId=cid
             )
 
-    def _apply_motors(self) -> None:
-        """Send the motor commands for the coming cycle (see :meth:`before_cycle`)."""
+    def _apply_motors(self, targets: np.ndarray | None = None) -> None:
+        """Send the motor commands (see :meth:`before_cycle`)."""
         force = 0.0 if self._limp else self.physics.motor_torque
         n = len(self._joint_indices)
         pybullet.setJointMotorControlArray(
             self.body_id,
             self._joint_indices,
             pybullet.POSITION_CONTROL,
-            targetPositions=self._targets.tolist(),
+            targetPositions=(self._targets if targets is None else targets).tolist(),
             targetVelocities=self._speeds.tolist(),
             positionGains=[self.physics.servo_gain] * n,
             velocityGains=[1.0] * n,
@@ -360,7 +370,8 @@ class SimRobot:
         robot sag. The motor here is a velocity motor plus a weak pull toward the angle the
         commanded speeds integrate to; the target never leads the joint by more than
         :attr:`RobotPhysics.servo_window` (a blocked joint does not wind up) and stays within
-        the joint's limits.
+        the joint's limits. Within the cycle the target moves on with every substep
+        (:meth:`before_substep`), so the pull never runs ahead of the commanded speed.
         """
         angles = np.array(
             [s[0] for s in pybullet.getJointStates(
@@ -368,10 +379,25 @@ class SimRobot:
             )]
         )  # fmt: skip
         window = self.physics.servo_window
+        self._cycle_start = np.clip(self._targets, self._lower, self._upper)
         targets = self._targets + self._speeds * CYCLE_SECONDS
         targets = np.clip(targets, angles - window, angles + window)
         self._targets = np.clip(targets, self._lower, self._upper)
-        self._apply_motors()
+
+    def before_substep(self, fraction: float) -> None:
+        """Aim the motors at where the joint should be as this substep starts (``fraction`` of
+        the cycle done). Bullet's motor asks for ``speed + gain * error / dt``: with the error
+        measured against the current target, a joint on track moves at its commanded speed."""
+        self._apply_motors(self._cycle_start + (self._targets - self._cycle_start) * fraction)
+
+    def striking_speed(self) -> float:
+        """Fastest surface speed (m/s) of the feet and shanks: |v| + |omega| * reach."""
+        states = pybullet.getLinkStates(
+            self.body_id, self._striking_links, computeLinkVelocity=1, physicsClientId=self._client
+        )
+        return max(
+            math.hypot(*state[6]) + math.hypot(*state[7]) * STRIKING_REACH for state in states
+        )
 
     # ---------------------------------------------------------------- names
     @property

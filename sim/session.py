@@ -52,13 +52,24 @@ BEAM_HEIGHT = 0.4
 VISIBLE_PARTS = ("head", "rlowerarm", "llowerarm", "rfoot", "lfoot")
 MAX_SAY_LENGTH = 20
 HEAR_DISTANCE = 50.0
+#: Substeps of an ordinary cycle: the robot stands and matches the real server's motions
+#: (benchmarks/fidelity.py) at 2; at 1 it is unstable.
+BASE_SUBSTEPS = 2
+#: How far a striking body may travel in one substep: sim.field shows that DEFAULT_SUBSTEPS
+#: substeps catch every contact up to 10 m/s, i.e. this travel per substep.
+SAFE_TRAVEL_PER_SUBSTEP = 10.0 * CYCLE_SECONDS / DEFAULT_SUBSTEPS
+#: Robots whose torso is this close to the ball (m) are checked for fast feet.
+NEAR_BALL = 0.8
+#: Headroom for a foot that speeds up during the cycle.
+SPEED_MARGIN = 1.5
 
 
 @dataclass(frozen=True)
 class SessionConfig:
     """Settings of a simulated game (``config/server.yaml`` holds the defaults)."""
 
-    #: physics substeps per 0.02 s cycle; 0 means ``sim.field.DEFAULT_SUBSTEPS``
+    #: physics substeps per 0.02 s cycle; 0 = adaptive: ``BASE_SUBSTEPS``, refined up to
+    #: ``sim.field.DEFAULT_SUBSTEPS`` in cycles where a fast foot is near the ball
     substeps: int = 0
     seed: int = 0
     vision_noise: bool = True
@@ -117,8 +128,7 @@ class Session:
 
     def __init__(self, config: SessionConfig | None = None) -> None:
         self.config = config or SessionConfig()
-        substeps = self.config.substeps or DEFAULT_SUBSTEPS
-        self.world = PhysicsWorld(substeps=substeps)
+        self.world = PhysicsWorld(substeps=self.config.substeps or BASE_SUBSTEPS)
         self.field = build_field(self.world)
         self.ball = Ball.create(self.world, (0.0, 0.0, BALL_RADIUS))
         self.referee = Referee(self.config.referee)
@@ -196,7 +206,7 @@ class Session:
         for slot in list(self.agents.values()):
             self._apply_staged(slot)
         self._apply_trainer_commands()
-        self.world.step_cycle()
+        self.world.step_cycle(self._substeps_for_cycle())
         self.time = round(self.time + CYCLE_SECONDS, 10)
         self.cycle += 1
         robots = [s for s in self.agents.values() if s.robot is not None]
@@ -209,6 +219,27 @@ class Session:
             return
         for slot in robots:
             slot.perception_bytes = self._perceive(slot, robots, heard)
+
+    def _substeps_for_cycle(self) -> int:
+        """Adaptive substepping: a foot may not jump over the ball within one substep.
+
+        Ordinary cycles use ``BASE_SUBSTEPS``; when a robot near the ball moves a foot or shank
+        fast, the cycle is split finely enough that it travels at most
+        ``SAFE_TRAVEL_PER_SUBSTEP`` per substep (the figure the fast-contact tests establish),
+        up to ``DEFAULT_SUBSTEPS``. A fixed ``SessionConfig.substeps`` turns this off.
+        """
+        if self.config.substeps:
+            return self.config.substeps
+        bx, by, _ = self.ball.position()
+        fastest = 0.0
+        for slot in self.agents.values():
+            if slot.robot is None:
+                continue
+            x, y, _ = slot.robot.torso_position()
+            if math.hypot(x - bx, y - by) < NEAR_BALL:
+                fastest = max(fastest, slot.robot.striking_speed())
+        needed = math.ceil(fastest * SPEED_MARGIN * CYCLE_SECONDS / SAFE_TRAVEL_PER_SUBSTEP)
+        return min(max(BASE_SUBSTEPS, needed), DEFAULT_SUBSTEPS)
 
     def perception(self, agent_id: int) -> bytes | None:
         """The perception message of the last step for this agent (None before its scene)."""

