@@ -27,7 +27,7 @@ from __future__ import annotations
 import hashlib
 import math
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -554,6 +554,15 @@ class SimRobot:
         mats[:, :3, 3] = positions
         mats[:, 3, 3] = 1.0
         return dict(zip(self._body_names, mats, strict=True))
+
+    def body_positions(self, names: Sequence[str]) -> dict[str, Vec3]:
+        """World positions of the centres of the named bodies (cheaper than full transforms:
+        vision needs only where other robots' heads, arms and feet are)."""
+        links = [self._link_of[name] for name in names]
+        states = pybullet.getLinkStates(
+            self.body_id, links, computeForwardKinematics=1, physicsClientId=self._client
+        )
+        return {name: tuple(state[0]) for name, state in zip(names, states, strict=True)}
 
     def camera_world_transform(self) -> np.ndarray:
         """World transform of the head centre (the camera; axes: x right, y forward, z up)."""

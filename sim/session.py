@@ -39,7 +39,7 @@ from sim.scene_graph import MonitorHeader, SceneGraph
 from sim.vision import VisibleRobot, VisionSensor
 from world.effectors import EffectorMessage, parse_effectors
 from world.field_geometry import BALL_RADIUS
-from world.perception import GameState, Heard, Perception, write_perception
+from world.perception import GameState, Heard, Perception, Vision, write_perception
 from world.yaml_config import load_yaml_config
 
 log = logging.getLogger(__name__)
@@ -217,8 +217,9 @@ class Session:
         self._said = []
         if not perceive:
             return
+        seen_by_all = _LazyVisibleRobots(robots)
         for slot in robots:
-            slot.perception_bytes = self._perceive(slot, robots, heard)
+            slot.perception_bytes = self._perceive(slot, seen_by_all, heard)
 
     def _substeps_for_cycle(self) -> int:
         """Adaptive substepping: a foot may not jump over the ball within one substep.
@@ -467,7 +468,7 @@ class Session:
         ]
 
     def _perceive(
-        self, slot: AgentSlot, robots: list[AgentSlot], heard: list[tuple[AgentSlot, str]]
+        self, slot: AgentSlot, visible: _LazyVisibleRobots, heard: list[tuple[AgentSlot, str]]
     ) -> bytes:
         robot = slot.robot
         game_state = GameState(
@@ -489,16 +490,14 @@ class Session:
             heard=self._hearing(slot, heard),
         )
         if slot.perceptions_sent % self.config.see_interval == 0:
-            perception.vision = self._see(slot, robots)
+            perception.vision = self._see(slot, visible)
         slot.perceptions_sent += 1
         return write_perception(perception)
 
-    def _see(self, slot: AgentSlot, robots: list[AgentSlot]):
+    def _see(self, slot: AgentSlot, visible: _LazyVisibleRobots) -> Vision:
+        others = [robot for other, robot in visible.items() if other is not slot and other.side]
         return slot.vision.see(
-            slot.robot.camera_world_transform(),
-            self.ball.position(),
-            [_visible(s) for s in robots if s is not slot and s.side is not None],
-            _visible(slot),
+            slot.robot.camera_world_transform(), self.ball.position(), others, visible[slot]
         )
 
     def _hearing(self, slot: AgentSlot, heard: list[tuple[AgentSlot, str]]) -> list[Heard]:
@@ -535,10 +534,30 @@ class Session:
         )
 
 
-def _visible(slot: AgentSlot) -> VisibleRobot:
-    transforms = slot.robot.body_world_transforms()
-    parts = {name: tuple(transforms[name][:3, 3]) for name in VISIBLE_PARTS}
-    return VisibleRobot(slot.team_name or "", slot.unum or 0, parts)
+class _LazyVisibleRobots:
+    """What vision can see of every robot this cycle, computed once and only if someone looks
+    (a new image comes every third cycle per robot, so most cycles nobody does)."""
+
+    def __init__(self, robots: list[AgentSlot]) -> None:
+        self._robots = robots
+        self._visible: dict[int, VisibleRobot] | None = None
+
+    def _compute(self) -> dict[int, VisibleRobot]:
+        if self._visible is None:
+            self._visible = {
+                s.agent_id: VisibleRobot(
+                    s.team_name or "", s.unum or 0, s.robot.body_positions(VISIBLE_PARTS)
+                )
+                for s in self._robots
+            }
+        return self._visible
+
+    def __getitem__(self, slot: AgentSlot) -> VisibleRobot:
+        return self._compute()[slot.agent_id]
+
+    def items(self) -> list[tuple[AgentSlot, VisibleRobot]]:
+        visible = self._compute()
+        return [(s, visible[s.agent_id]) for s in self._robots]
 
 
 def _slot_state(slot: AgentSlot) -> dict:

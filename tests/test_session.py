@@ -171,3 +171,16 @@ def test_restored_session_replays_200_cycles_identically(session):
     session.restore_state(snapshot)
     replay = run(200, 30)
     assert replay == original
+
+
+def test_cycles_are_refined_when_a_fast_foot_nears_the_ball(session, monkeypatch):
+    agent = _join(session)
+    robot = session.agents[agent].robot
+    session.ball.place((-1.8, 0.0, 0.042))
+    assert session._substeps_for_cycle() == 2  # standing still: the base count
+    monkeypatch.setattr(robot, "striking_speed", lambda: 4.0)
+    assert session._substeps_for_cycle() == 4  # 4 m/s with headroom: 3.3 cm per substep
+    monkeypatch.setattr(robot, "striking_speed", lambda: 10.0)
+    assert session._substeps_for_cycle() == 6  # capped where the field tests prove safety
+    session.ball.place((5.0, 5.0, 0.042))
+    assert session._substeps_for_cycle() == 2  # fast feet far from the ball do not matter
