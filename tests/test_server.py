@@ -230,3 +230,21 @@ def test_monitor_gets_full_state_then_updates_and_trainer_moves_ball(server):
     finally:
         agent.close()
         monitor.close()
+
+
+def test_real_time_mode_runs_without_waiting_for_syn():
+    session = Session(SessionConfig(seed=2))
+    srv = SoccerServer(session, "127.0.0.1", 0, 0, sync=False)
+    thread = threading.Thread(target=srv.serve_forever, daemon=True)
+    thread.start()
+    client = Client(srv.port)
+    try:
+        client.send(SCENE)
+        times = [parse_perception(client.receive()).time for _ in range(10)]  # never syncs
+        assert times == sorted(times) and len(set(times)) == 10
+    finally:
+        client.close()
+        srv.stop()
+        thread.join(timeout=10)
+        srv.close()
+        session.close()

@@ -184,3 +184,38 @@ def test_cycles_are_refined_when_a_fast_foot_nears_the_ball(session, monkeypatch
     assert session._substeps_for_cycle() == 6  # capped where the field tests prove safety
     session.ball.place((5.0, 5.0, 0.042))
     assert session._substeps_for_cycle() == 2  # fast feet far from the ball do not matter
+
+
+def test_beam_only_before_kick_off_and_clamped_to_own_half(session):
+    agent = _join(session, beam=(3.0, 1.0, 0.0))  # the opponent half: clamped to x <= 0
+    x, y, _ = session.agents[agent].robot.torso_position()
+    assert x <= 0.05 and y == pytest.approx(1.0, abs=0.05)
+    _trainer(session, "(playMode PlayOn)")
+    session.handle_message(agent, b"(beam -5 -5 0)(syn)")
+    for _ in range(5):
+        session.step()
+    x, y, _ = session.agents[agent].robot.torso_position()
+    assert (x, y) != pytest.approx((-5.0, -5.0), abs=0.5)
+
+
+def test_say_is_heard_by_the_speaker_and_by_others(session):
+    speaker = _join(session, "Alpha", 1)
+    listener = _join(session, "Beta", 1, beam=(-4.0, 2.0, 0.0))
+    session.handle_message(speaker, b"(say hello42)(syn)")
+    heard = {}
+    for _ in range(3):
+        session.step()
+        for agent in (speaker, listener):
+            for h in parse_perception(session.perception(agent)).heard:
+                heard[agent] = h
+    assert heard[speaker].direction == "self" and heard[speaker].message == "hello42"
+    assert heard[listener].team == "Alpha" and isinstance(heard[listener].direction, float)
+
+
+def test_right_team_beams_into_its_own_half_facing_the_left_goal(session):
+    _join(session, "Alpha", 1)
+    right = _join(session, "Beta", 2, beam=(-3.0, 1.0, 0.0))
+    robot = session.agents[right].robot
+    x, y, _ = robot.torso_position()
+    assert (x, y) == pytest.approx((3.0, -1.0), abs=0.05)
+    assert abs(abs(robot.torso_yaw_deg()) - 180.0) < 5.0
