@@ -19,6 +19,17 @@ SERVER_EXAMPLES = """examples:
   naosoccer server --host 0.0.0.0 --port 3100 --monitor-port 3200 --config config/server.yaml
 """
 
+TEAM_EXAMPLES = """examples:
+  naosoccer team                                  11 agents against 127.0.0.1:3100
+  naosoccer team --name Alpha --host 10.0.0.5     against a real rcssserver3d elsewhere
+  naosoccer team --config config/team.yaml
+"""
+
+MATCH_EXAMPLES = """examples:
+  naosoccer match --duration 20 --seed 1         a short match, events and the score
+  naosoccer match --duration 600 --monitor-port 3200   a full game RoboViz can watch
+"""
+
 DEMO_EXAMPLES = """examples:
   naosoccer demo                        embedded server + a scripted client for 5 s
   naosoccer demo --cycles 1000          a longer run
@@ -39,7 +50,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return args.run(args)
     except KeyboardInterrupt:
         return 130
-    except (OSError, ValueError) as exc:
+    except (OSError, ValueError, RuntimeError) as exc:
         print(f"naosoccer: error: {exc}", file=sys.stderr)
         return 1
 
@@ -63,6 +74,36 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     _add_server_options(server)
     server.set_defaults(run=_run_server)
+
+    team = commands.add_parser(
+        "team",
+        help="launch a team of 11 agents against a server",
+        description="Connect 11 agents (robot types by the rules) to a SimSpark-protocol server: "
+        "ours or a real rcssserver3d. One process; agents join one at a time.",
+        epilog=TEAM_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    team.add_argument("--host", default="127.0.0.1")
+    team.add_argument("--port", type=int, default=3100, help="the server's agent port")
+    team.add_argument("--name", default=None, help="team name (default: from --config)")
+    team.add_argument("--config", help="team settings (YAML), e.g. config/team.yaml")
+    team.set_defaults(run=_run_team)
+
+    match = commands.add_parser(
+        "match",
+        help="the embedded server plus two teams: play and print the score",
+        description="Start the stand-in server in this process with two 11-agent teams, kick "
+        "off, print the referee's events and a final 'score:' line.",
+        epilog=MATCH_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    match.add_argument("--duration", type=float, default=60.0, help="game seconds to play")
+    match.add_argument("--seed", type=int, default=0)
+    match.add_argument("--left", default="NaoLeft", help="left team name")
+    match.add_argument("--right", default="NaoRight", help="right team name")
+    match.add_argument("--monitor-port", type=int, help="open a monitor port (e.g. 3200)")
+    match.add_argument("--real-time", action="store_true", help="no faster than 50 cycles/s")
+    match.set_defaults(run=_run_match)
 
     demo = commands.add_parser(
         "demo",
@@ -123,6 +164,41 @@ def _run_server(args: argparse.Namespace) -> int:
     finally:
         server.close()
         session.close()
+    return 0
+
+
+def _run_team(args: argparse.Namespace) -> int:
+    from dataclasses import replace
+
+    from agent.team import TeamConfig, run_team_tcp
+
+    config = TeamConfig.from_yaml(args.config) if args.config else TeamConfig()
+    if args.name:
+        config = replace(config, name=args.name)
+    print(f"team {config.name}: 11 agents against {args.host}:{args.port}", flush=True)
+    run_team_tcp(config, args.host, args.port)
+    print(f"team {config.name}: the server closed the game")
+    return 0
+
+
+def _run_match(args: argparse.Namespace) -> int:
+    from agent.match import run_match
+    from agent.team import TeamConfig
+
+    result = run_match(
+        args.duration,
+        seed=args.seed,
+        left=TeamConfig(args.left),
+        right=TeamConfig(args.right),
+        monitor_port=args.monitor_port,
+        real_time=args.real_time,
+        on_event=lambda text: print(text, flush=True),
+    )
+    print(
+        f"played {result.game_time:.1f} s of game time in {result.wall_seconds:.1f} s "
+        f"({result.realtime_factor:.2f}x real time)"
+    )
+    print(result.score_line())
     return 0
 
 

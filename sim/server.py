@@ -22,6 +22,7 @@ import selectors
 import socket
 import time
 from dataclasses import dataclass, field
+from typing import Protocol
 
 from sim.monitor import parse_trainer_commands
 from sim.session import Session
@@ -35,6 +36,14 @@ MAX_INPUT_FRAME = 64 * 1024
 MONITOR_INTERVAL = 2
 #: A sync-mode server gives up waiting for an agent's (syn) after this long and drops it.
 SYNC_TIMEOUT_S = 30.0
+
+
+class LocalAgent(Protocol):
+    """An agent living in the server's process (see ``agent.agent.Agent``)."""
+
+    def greeting(self) -> bytes: ...
+
+    def think(self, payload: bytes) -> bytes: ...
 
 
 @dataclass
@@ -65,6 +74,8 @@ class SoccerServer:
         self.agent_listener = self._listen(host, port, "agent")
         self.monitor_listener = self._listen(host, monitor_port, "monitor")
         self.clients: dict[socket.socket, _Client] = {}
+        #: in-process agents (anything with ``think(bytes) -> bytes``): same bytes, no socket
+        self.local_agents: dict[int, LocalAgent] = {}
         self._running = False
 
     # ------------------------------------------------------------------ public
@@ -109,9 +120,25 @@ class SoccerServer:
             listener.close()
         self.selector.close()
 
+    def add_local_agent(self, agent: LocalAgent) -> int:
+        """Connect an in-process agent: it gets its perception and answers inside
+        :meth:`run_cycle`, with the very bytes a TCP agent would exchange."""
+        agent_id = self.session.add_agent()
+        self.local_agents[agent_id] = agent
+        self.session.handle_message(agent_id, agent.greeting())
+        return agent_id
+
+    def poll(self, timeout: float = 0.0) -> None:
+        """Serve socket traffic (connections, effectors, trainer commands) for up to timeout."""
+        self._poll(timeout)
+
     def run_cycle(self) -> None:
         """Step the game once and send every agent its perception (and monitors their update)."""
         self.session.step()
+        for agent_id, agent in self.local_agents.items():
+            payload = self.session.perception(agent_id)
+            if payload is not None:
+                self.session.handle_message(agent_id, agent.think(payload))
         for client in list(self.clients.values()):
             if client.kind == "agent" and client.agent_id is not None:
                 payload = self.session.perception(client.agent_id)

@@ -1,0 +1,123 @@
+"""The strategy layer: formation, beam before kick-off, roles, and which behaviour runs when.
+
+Kept deliberately small: it decides, behaviours act. Each cycle :meth:`Strategy.decide` reads
+the world model (perception-fed only) and calls ``Behavior.execute`` with the chosen skill.
+Positions are in the team frame: x towards the opponent goal, own goal at x = -15.
+
+Roles: the player that believes itself closest to the ball (its own estimate against the
+teammates it has seen) is *active* and goes for the ball; the others hold their formation
+places. Skills that later issues add (walk, dribbles, kicks) are picked up when registered;
+until then a player stands.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from world.yaml_config import load_yaml_config
+
+#: Play modes in which the rules allow beaming.
+BEAM_MODES = ("BeforeKickOff", "Goal_Left", "Goal_Right")
+#: A teammate whose estimate is older than this (s) is not counted in role assignment.
+TEAMMATE_MEMORY_S = 3.0
+
+
+def _default_formation() -> dict[int, tuple[float, float]]:
+    """A 4-3-3 style formation for 11 players, team frame (x towards the opponent goal)."""
+    return {
+        1: (-14.0, 0.0),
+        2: (-10.5, -4.0),
+        3: (-10.5, 4.0),
+        4: (-11.5, -1.5),
+        5: (-11.5, 1.5),
+        6: (-7.0, -5.0),
+        7: (-7.0, 0.0),
+        8: (-7.0, 5.0),
+        9: (-3.0, -4.5),
+        10: (-0.6, 0.0),
+        11: (-3.0, 4.5),
+    }
+
+
+@dataclass(frozen=True)
+class StrategyConfig:
+    """Formation places (unum -> x, y in the team frame); see ``config/team.yaml``."""
+
+    formation: dict[int, tuple[float, float]] = field(default_factory=_default_formation)
+
+    @classmethod
+    def from_yaml(cls, path: str | Path) -> StrategyConfig:
+        return load_yaml_config(cls, path)
+
+
+@dataclass(frozen=True)
+class Decision:
+    """What the strategy wants sent besides joint speeds this cycle."""
+
+    beam: tuple[float, float, float] | None = None
+    say: str | None = None
+
+
+class Strategy:
+    """Formation, beaming and role assignment for one agent."""
+
+    def __init__(self, config: StrategyConfig | None = None) -> None:
+        self.config = config or StrategyConfig()
+        self._beamed_in_mode: str | None = None
+
+    def decide(self, world, behavior) -> Decision:
+        """Pick this cycle's behaviour (through ``behavior.execute``) and any beam."""
+        beam = self._beam(world)
+        if world.robot.is_fallen and "get_up" in behavior.skill_names:
+            behavior.execute("get_up")
+        elif world.play_mode in BEAM_MODES or world.play_mode == "GameOver":
+            behavior.execute("pose", "stand")
+        elif self.is_active(world):
+            self._go_for_ball(world, behavior)
+        else:
+            self._hold_position(world, behavior)
+        return Decision(beam=beam)
+
+    # ------------------------------------------------------------------ roles
+    def home(self, unum: int | None) -> tuple[float, float]:
+        return self.config.formation.get(unum or 0, (-5.0, 0.0))
+
+    def is_active(self, world) -> bool:
+        """Closest to the ball among the teammates this agent knows about."""
+        ball = world.ball_field_position()
+        if ball is None:
+            return False
+        me = world.my_field_position()
+        mine = math.dist(me, ball)
+        for mate in world.teammate_positions(TEAMMATE_MEMORY_S):
+            if math.dist(mate, ball) < mine:
+                return False
+        return True
+
+    # ------------------------------------------------------------------ actions
+    def _beam(self, world) -> tuple[float, float, float] | None:
+        """Beam once each time a beam-allowed mode starts, to the formation place."""
+        if world.play_mode not in BEAM_MODES or world.side is None:
+            self._beamed_in_mode = None
+            return None
+        if self._beamed_in_mode == world.play_mode:
+            return None
+        self._beamed_in_mode = world.play_mode
+        x, y = self.home(world.unum)
+        return (x, y, 0.0)
+
+    def _go_for_ball(self, world, behavior) -> None:
+        if "walk" in behavior.skill_names:
+            ball = world.ball_field_position()
+            behavior.execute("walk", ball[0], ball[1], None)
+        else:
+            behavior.execute("pose", "stand")
+
+    def _hold_position(self, world, behavior) -> None:
+        if "walk" in behavior.skill_names:
+            x, y = self.home(world.unum)
+            behavior.execute("walk", x, y, 0.0)
+        else:
+            behavior.execute("pose", "stand")
