@@ -77,6 +77,14 @@ def _coerce(hint: Any, value: Any, where: str) -> Any:
         raise ConfigError(f"{where}: expected null, got {value!r}")
     if dataclasses.is_dataclass(hint):
         return config_from_mapping(hint, value, where)
+    if origin is dict:
+        if not isinstance(value, Mapping):
+            raise ConfigError(f"{where}: expected a mapping, got {value!r}")
+        key_hint, value_hint = typing.get_args(hint) or (Any, Any)
+        return {
+            _coerce(key_hint, k, where): _coerce(value_hint, v, f"{where}[{k}]")
+            for k, v in value.items()
+        }
     if origin in (tuple, list):
         if not isinstance(value, (list, tuple)):
             raise ConfigError(f"{where}: expected a list, got {value!r}")
