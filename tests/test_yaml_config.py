@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 
-CONFIG = Path(__file__).resolve().parents[1] / "config"
-
 from world.yaml_config import ConfigError, config_from_mapping, load_yaml_config
+
+CONFIG = Path(__file__).resolve().parents[1] / "config"
 
 
 @dataclass(frozen=True)
