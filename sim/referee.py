@@ -29,8 +29,6 @@ from enum import Enum
 from pathlib import Path
 from typing import Literal, TypeAlias
 
-import yaml
-
 from world.field_geometry import (
     BALL_RADIUS,
     FIELD_WIDTH,
@@ -43,6 +41,7 @@ from world.field_geometry import (
     PENALTY_WIDTH,
 )
 from world.play_modes import play_mode_index
+from world.yaml_config import load_yaml_config
 
 Team: TypeAlias = Literal["left", "right"]
 Vec3: TypeAlias = tuple[float, float, float]
@@ -176,22 +175,10 @@ def _config_problems(values: Mapping[str, object]) -> list[str]:
 def load_referee_config(path: str | Path = DEFAULT_CONFIG_PATH) -> RefereeConfig:
     """Read a YAML mapping of parameters; keys left out keep the real server's defaults.
 
-    Raises ValueError naming the file and the offending key for unknown keys, wrong types,
-    negative times or distances, or a file that is not a YAML mapping.
+    Raises ValueError (``world.yaml_config.ConfigError``) naming the file and the offending key
+    for unknown keys, wrong types, negative times or distances, or a file that is not a mapping.
     """
-    path = Path(path)
-    try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except yaml.YAMLError as error:
-        raise ValueError(f"{path}: not valid YAML: {error}") from None
-    if data is None:
-        data = {}
-    if not isinstance(data, dict):
-        raise ValueError(f"{path}: expected a mapping of parameters, got {type(data).__name__}")
-    problems = _config_problems(data)
-    if problems:
-        raise ValueError(f"{path}: " + "; ".join(problems))
-    return RefereeConfig(**data)
+    return load_yaml_config(RefereeConfig, path)
 
 
 # --------------------------------------------------------------------------------------------
