@@ -20,7 +20,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from agent.match import run_match  # noqa: E402
+from agent.match import run_match
 
 
 def main() -> None:
