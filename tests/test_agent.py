@@ -1,0 +1,137 @@
+"""The agent loop, the team launcher and the embedded match."""
+
+from __future__ import annotations
+
+import socket
+import threading
+
+import numpy as np
+import pytest
+
+from agent.agent import Agent, AgentConfig
+from agent.match import run_match
+from agent.team import DEFAULT_ROBOT_TYPES, TeamConfig, check_robot_types, run_team_tcp
+from sim.server import SoccerServer
+from sim.session import Session, SessionConfig
+from world.framing import FrameDecoder, frame
+
+
+def _world_snapshot(agent: Agent) -> dict:
+    world = agent.world
+    return {
+        "time": world.time,
+        "play_mode": world.play_mode,
+        "side": world.side,
+        "unum": world.unum,
+        "joints": dict(world.robot.joints_deg),
+        "up": tuple(np.round(world.robot.up, 12)),
+        "pose": repr(world.pose),
+        "ball": repr(world.ball),
+    }
+
+
+def test_tcp_and_in_process_agents_see_identical_worlds():
+    cycles = 120
+
+    # in-process: the agent answers inside the server's cycle, no socket
+    local_session = Session(SessionConfig(seed=11))
+    local_server = SoccerServer(local_session, "127.0.0.1", 0, 0, sync=True)
+    local = Agent(AgentConfig("Same", 1, 2))
+    local_server.add_local_agent(local)
+    for _ in range(cycles):
+        local_server.run_cycle()
+    local_server.close()
+    local_session.close()
+
+    # TCP: the same agent code over a real socket, server in sync mode
+    tcp_session = Session(SessionConfig(seed=11))
+    tcp_server = SoccerServer(tcp_session, "127.0.0.1", 0, 0, sync=True)
+    remote = Agent(AgentConfig("Same", 1, 2))
+    sock = socket.create_connection(("127.0.0.1", tcp_server.port))
+    sock.sendall(frame(remote.greeting()))
+    while not any(s.robot for s in tcp_session.agents.values()):
+        tcp_server.poll(0.05)  # no cycle runs before the robot exists, as in-process
+
+    def play() -> None:
+        decoder = FrameDecoder()
+        answered = 0
+        while answered < cycles:
+            for message in decoder.feed(sock.recv(1 << 20)):
+                sock.sendall(frame(remote.think(message)))
+                answered += 1
+
+    client = threading.Thread(target=play, daemon=True)
+    client.start()
+    thread = threading.Thread(target=tcp_server.serve_forever, args=(cycles,), daemon=True)
+    thread.start()
+    client.join(timeout=60)
+    tcp_server.stop()
+    thread.join(timeout=10)
+    sock.close()
+    tcp_server.close()
+    tcp_session.close()
+
+    assert remote.cycles == local.cycles == cycles
+    assert _world_snapshot(remote) == _world_snapshot(local)
+
+
+def test_robot_type_rules():
+    check_robot_types(DEFAULT_ROBOT_TYPES)
+    with pytest.raises(ValueError, match="at least 3"):
+        check_robot_types((0,) * 6 + (1,) * 5)
+    with pytest.raises(ValueError, match="at most 7"):
+        check_robot_types((0,) * 8 + (1, 2, 3))
+    with pytest.raises(ValueError, match="0-4"):
+        check_robot_types((0, 1, 5))
+
+
+def test_team_of_eleven_joins_over_tcp_and_stops_cleanly_when_the_server_goes():
+    session = Session(SessionConfig(seed=4))
+    server = SoccerServer(session, "127.0.0.1", 0, 0, sync=True)
+    team = TeamConfig("Eleven")
+    result: dict = {}
+
+    def play() -> None:
+        result["returned"] = run_team_tcp(team, "127.0.0.1", server.port)
+
+    client = threading.Thread(target=play, daemon=True)
+    client.start()
+    joined = []
+    for _ in range(2000):
+        server.poll(0.01)
+        if server._agents_with_robots() and server._all_synced():
+            server.run_cycle()
+        joined = [s for s in session.agents.values() if s.unum is not None]
+        if len(joined) == 11 and session.cycle > 50:
+            break
+    server.close()  # the server goes away: the team must notice and return
+    client.join(timeout=20)
+    session.close()
+    assert sorted(s.unum for s in joined) == list(range(1, 12))
+    assert sorted(s.robot_type for s in joined) == sorted(DEFAULT_ROBOT_TYPES)
+    assert {s.side for s in joined} == {"left"}
+    assert not client.is_alive() and result["returned"] == 0
+
+
+def test_no_server_gives_a_clear_error():
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    with pytest.raises(ConnectionError, match="no server answers"):
+        run_team_tcp(TeamConfig("Lonely"), "127.0.0.1", port)
+
+
+def test_short_match_kicks_off_and_reports_the_score():
+    lines: list[str] = []
+    small = (0, 1, 2)
+    result = run_match(
+        1.0,
+        seed=5,
+        left=TeamConfig("Reds", robot_types=small),
+        right=TeamConfig("Blues", robot_types=small),
+        on_event=lines.append,
+    )
+    assert result.game_time >= 1.0
+    assert any("KickOff" in line or "kick" in line.lower() for line in lines), lines
+    assert result.score_line() == f"score: Reds {result.score_left} - {result.score_right} Blues"
+    assert all(agent.world.side in ("left", "right") for agent in result.agents)
