@@ -56,6 +56,14 @@ class Skill:
     def reset(self) -> None:
         """Forget any progress: the next :meth:`step` starts the skill afresh."""
 
+    def validate(self, *args: Any) -> None:
+        """Raise ValueError for argument values ``step`` cannot use (a negative distance, an
+        unknown pose name). The manager calls this before every step, after checking the
+        number and types of the arguments against ``step``'s signature, and adds the skill's
+        signature and the list of skills to the message."""
+
     def step(self, context: SkillContext, *args: Any) -> bool:
-        """Run one cycle; True when finished."""
+        """Run one cycle; True when finished. Extra parameters after ``context`` are the
+        arguments of ``Behavior.execute(name, *args)``; annotate them so that the manager can
+        check callers' types."""
         raise NotImplementedError
