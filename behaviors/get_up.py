@@ -1,0 +1,140 @@
+"""Fall detection and getting up, from the robot's own perceptors only.
+
+``execute("get_up")`` is safe to call every cycle: on a standing robot it finishes at once. On a
+fallen one it waits until the body has come to rest (a sequence started while still rolling
+starts from the wrong posture), reads which side faces the ground from the tilt estimate of
+:class:`~world.robot_state.RobotState`, rolls from a side onto the back first, plays the
+matching keyframe sequence and finishes once the robot stands again: torso upright and the feet
+carrying the weight. A sequence that ends with the robot still down is tried again from the new
+posture (the caller decides how long to keep trying).
+
+Sequences are looked up per robot type first (``get_up_front_type3``), then by the common name
+(``get_up_front``), so a type whose longer legs need other angles overrides only what differs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from behaviors.joint_control import CYCLE_SECONDS
+from behaviors.keyframes import KeyframePlayer, KeyframeSequence, default_sequences, mirrored
+from behaviors.poses import get_pose
+from behaviors.skill import Skill, SkillContext
+from world.robot_state import GRAVITY, RobotState
+
+#: Standing again: torso within this many degrees of vertical ...
+STANDING_TILT_DEG = 20.0
+#: ... and the foot sensors carrying at least this fraction of the robot's weight.
+STANDING_LOAD_FRACTION = 0.6
+#: The body is at rest when the gyro reads less than this (deg/s) ...
+SETTLED_GYRO_DEG_S = 40.0
+#: ... for this many cycles in a row; after MAX_SETTLE_S the skill starts anyway.
+SETTLED_CYCLES = 3
+MAX_SETTLE_S = 1.0
+#: The sequence that turns a robot lying on its left side onto its back (mirrored for the right).
+ROLL_FROM_LEFT = "roll_left_to_back"
+
+
+def feet_load(state: RobotState) -> float:
+    """Total vertical force (N) on the foot and toe pressure sensors."""
+    return sum(max(0.0, reading.force[2]) for reading in state.foot_pressure.values())
+
+
+def robot_stands(state: RobotState) -> bool:
+    """Upright torso and the weight on the feet: what "back on its feet" means here."""
+    weight = state.spec.total_mass * GRAVITY
+    return (
+        state.tilt_deg < STANDING_TILT_DEG and feet_load(state) >= STANDING_LOAD_FRACTION * weight
+    )
+
+
+def sequence_for(base: str, robot_type: int) -> KeyframeSequence:
+    """The robot type's own version of a sequence if there is one, else the common one."""
+    sequences = default_sequences()
+    return sequences.get(f"{base}_type{robot_type}") or sequences[base]
+
+
+@dataclass
+class _Attempt:
+    """What the skill is doing now: which sequence it plays, and since when it waits."""
+
+    player: KeyframePlayer | None = None
+    rolling: bool = False
+    settled_cycles: int = 0
+    waited_cycles: int = 0
+
+
+class GetUpSkill(Skill):
+    """``execute("get_up")``: True once the robot stands (at once if it never fell)."""
+
+    name = "get_up"
+
+    def __init__(self) -> None:
+        self._attempt = _Attempt()
+        self.attempts = 0
+        #: the side the robot was found lying on when the current sequence started
+        self.lying_on: str | None = None
+
+    def reset(self) -> None:
+        self._attempt = _Attempt()
+        self.attempts = 0
+        self.lying_on = None
+
+    def step(self, context: SkillContext) -> bool:
+        state: RobotState = context.world.robot
+        attempt = self._attempt
+        if attempt.player is not None:
+            return self._play(context, state)
+        if robot_stands(state) or (not state.is_fallen and self.attempts == 0):
+            self._hold_stand(context)
+            return True
+        if not self._settled(state):
+            self._hold_still(context, state)
+            return False
+        self._start(state)
+        return self._play(context, state)
+
+    # ------------------------------------------------------------------ phases
+    def _settled(self, state: RobotState) -> bool:
+        """Wait for the fall to end: a few quiet gyro readings, or MAX_SETTLE_S at most."""
+        attempt = self._attempt
+        attempt.waited_cycles += 1
+        quiet = float(abs(state.gyro_deg_s).max()) < SETTLED_GYRO_DEG_S
+        attempt.settled_cycles = attempt.settled_cycles + 1 if quiet else 0
+        return (
+            attempt.settled_cycles >= SETTLED_CYCLES
+            or attempt.waited_cycles * CYCLE_SECONDS >= MAX_SETTLE_S
+        )
+
+    def _start(self, state: RobotState) -> None:
+        """Pick the sequence for the side the robot lies on (sides roll onto the back first)."""
+        side = state.lying_on or ("front" if state.pitch_deg > 0 else "back")
+        self.lying_on = side
+        self.attempts += 1
+        if side in ("left", "right"):
+            sequence = sequence_for(ROLL_FROM_LEFT, state.robot_type)
+            if side == "right":
+                sequence = mirrored(sequence)
+            self._attempt = _Attempt(KeyframePlayer(sequence), rolling=True)
+        else:
+            self._attempt = _Attempt(
+                KeyframePlayer(sequence_for(f"get_up_{side}", state.robot_type))
+            )
+
+    def _play(self, context: SkillContext, state: RobotState) -> bool:
+        attempt = self._attempt
+        assert attempt.player is not None
+        if not attempt.player.step(context.commands, state.joints_deg):
+            return False
+        # the sequence has sent its last targets: standing, or lying again (retry)
+        self._attempt = _Attempt()
+        return robot_stands(state) and not attempt.rolling
+
+    def _hold_stand(self, context: SkillContext) -> None:
+        context.commands.set_targets(
+            get_pose("stand").for_robot(frozenset(context.commands.joint_names))
+        )
+
+    def _hold_still(self, context: SkillContext, state: RobotState) -> None:
+        """While the body settles keep every joint where it is (no flailing)."""
+        context.commands.set_targets(dict(state.joints_deg))
