@@ -125,8 +125,9 @@ class LocalizerConfig:
     #: widening when an image disagrees but cannot restart the filter (m, deg)
     doubt_sigma_m: float = 0.5
     doubt_sigma_deg: float = 10.0
-    #: Gauss-Newton iterations per update (a restart from landmarks alone takes 4)
-    iterations: int = 2
+    #: Gauss-Newton iterations per update from the prediction (a restart from landmarks
+    #: alone takes more); the prediction is close, so one linearisation is enough
+    iterations: int = 1
 
 
 class Localizer:
@@ -253,36 +254,37 @@ class Localizer:
         lines = np.zeros((0, 2, 2)) if lines is None else np.asarray(lines, dtype=float)
 
         prior, cov = self._state, self._cov
-        if prior is not None and len(seen) and not self._consistent(prior, cov, field, seen):
-            prior = None  # carried away, or lost: the prediction is worthless
-            if len(seen) < 2:
-                self._cov = cov + np.diag(
-                    [self.config.doubt_sigma_m**2] * 2
-                    + [math.radians(self.config.doubt_sigma_deg) ** 2]
-                )
+        if prior is not None:
+            matched = self._match_lines(prior, cov, lines) if len(lines) else None
+            if matched is None and not len(seen):
                 return False
-        restarted = prior is None
-        if restarted:
+            state, new_cov, agrees = self._solve(prior, cov, field, seen, matched, check=True)
+            if agrees:
+                return self._accept(state, new_cov, time)
+            # carried away, or lost: the prediction is worthless
             if len(seen) < 2:
+                doubt_m = self.config.doubt_sigma_m
+                doubt_rad = math.radians(self.config.doubt_sigma_deg)
+                self._cov = cov + np.diag([doubt_m**2, doubt_m**2, doubt_rad**2])
                 return False
-            prior = _fit_points(field, seen, self._landmark_weights(seen))
-            restart_m = self.config.restart_sigma_m
-            restart_rad = math.radians(self.config.restart_sigma_deg)
-            cov = np.diag([restart_m**2, restart_m**2, restart_rad**2])
-            if self._state is not None:
-                self.restarts += 1
-
-        # Lines are matched by a pose close to the truth: the prediction when it agreed with
-        # the landmarks, else the landmarks' own solution first.
-        state, new_cov = prior, cov
-        if restarted:
-            state, new_cov = self._solve(prior, cov, field, seen, None, iterations=4)
-        matched = self._match_lines(state, new_cov, lines) if len(lines) else None
-        if matched is None and not len(seen):
+            self.restarts += 1
+        if len(seen) < 2:
             return False
-        if matched is not None or not restarted:
-            state, new_cov = self._solve(prior, cov, field, seen, matched, start=state)
-        self._state, self._cov = state, new_cov
+        # a fresh start from the landmarks alone; lines join once that pose is close
+        prior = _fit_points(field, seen, self._landmark_weights(seen))
+        restart_m = self.config.restart_sigma_m
+        restart_rad = math.radians(self.config.restart_sigma_deg)
+        cov = np.diag([restart_m**2, restart_m**2, restart_rad**2])
+        state, new_cov, _ = self._solve(prior, cov, field, seen, None, iterations=4)
+        matched = self._match_lines(state, new_cov, lines) if len(lines) else None
+        if matched is not None:
+            state, new_cov, _ = self._solve(
+                prior, cov, field, seen, matched, start=state, iterations=2
+            )
+        return self._accept(state, new_cov, time)
+
+    def _accept(self, state: Array, cov: Array, time: float | None) -> bool:
+        self._state, self._cov = state, cov
         self.updates += 1
         self.last_update_time = time
         return True
@@ -300,20 +302,6 @@ class Localizer:
             ranges, 0.1
         )
         return range_sigma, bearing_sigma
-
-    def _consistent(self, state: Array, cov: Array, field: Array, seen: Array) -> bool:
-        """Whether every landmark agrees with the predicted pose within the kidnap gate."""
-        predicted, jac = _range_bearing(state, field)
-        measured = np.stack([np.hypot(seen[:, 0], seen[:, 1]), np.arctan2(seen[:, 1], seen[:, 0])])
-        innovation = measured.T - predicted
-        innovation[:, 1] = (innovation[:, 1] + math.pi) % (2 * math.pi) - math.pi
-        range_sigma, bearing_sigma = self._landmark_sigmas(measured[0])
-        # S = H P H^T + R for each landmark's (range, bearing)
-        s = jac @ cov @ jac.transpose(0, 2, 1)
-        s[:, 0, 0] += range_sigma**2
-        s[:, 1, 1] += bearing_sigma**2
-        chi2 = np.einsum("ni,nij,nj->n", innovation, np.linalg.inv(s), innovation)
-        return bool(np.all(chi2 < self.config.kidnap_chi2))
 
     def _match_lines(self, state: Array, cov: Array, lines: Array) -> tuple | None:
         """Assign each seen line piece to a field line; returns (end points (m, 2) in the ego
@@ -364,50 +352,61 @@ class Localizer:
         matched: tuple | None,
         start: Array | None = None,
         iterations: int | None = None,
-    ) -> tuple[Array, Array]:
-        """Iterated EKF update: the pose that best fits the prior and all measurements."""
+        check: bool = False,
+    ) -> tuple[Array, Array, bool]:
+        """Iterated EKF update: the pose that best fits the prior and all measurements, its
+        covariance, and (with ``check``, starting at the prior) whether every landmark agreed
+        with the prior within the kidnap gate."""
         info_prior = np.linalg.inv(cov)
         state = (prior if start is None else start).copy()
+        n = len(field)
         ranges = np.hypot(seen[:, 0], seen[:, 1])
-        measured = np.stack([ranges, np.arctan2(seen[:, 1], seen[:, 0])], axis=1)
+        measured = np.column_stack([ranges, np.arctan2(seen[:, 1], seen[:, 0])])
         range_sigma, bearing_sigma = self._landmark_sigmas(ranges)
-        landmark_w = np.stack([range_sigma**-2, bearing_sigma**-2], axis=1).reshape(-1)
+        variances = np.column_stack([range_sigma**2, bearing_sigma**2])
+        weights = [1.0 / variances.reshape(-1)]
         if matched is not None:
             points, which, line_ranges = matched
             cfg = self.config
-            line_w = (cfg.line_sigma_m + cfg.line_sigma_rel * line_ranges) ** -2
+            weights.append((cfg.line_sigma_m + cfg.line_sigma_rel * line_ranges) ** -2)
             normal = self._line_normal[which]
-            start_pt = self._line_start[which]
+            offset = np.einsum("mx,mx->m", self._line_start[which], normal)
+        w = np.concatenate(weights)
+        h = np.empty((len(w), 3))
+        r = np.empty(len(w))
+        agrees = True
         info = info_prior
-        for _ in range(iterations or self.config.iterations):
-            rows, residuals, weights = [], [], []
-            if len(field):
+        for iteration in range(iterations or self.config.iterations):
+            if n:
                 predicted, jac = _range_bearing(state, field)
-                r = measured - predicted
-                r[:, 1] = (r[:, 1] + math.pi) % (2 * math.pi) - math.pi
-                rows.append(jac.reshape(-1, 3))
-                residuals.append(r.reshape(-1))
-                weights.append(landmark_w)
+                innovation = measured - predicted
+                innovation[:, 1] = (innovation[:, 1] + math.pi) % (2 * math.pi) - math.pi
+                h[: 2 * n] = jac.reshape(-1, 3)
+                r[: 2 * n] = innovation.reshape(-1)
+                if check and iteration == 0:
+                    agrees = self._agrees(innovation, jac, cov, variances)
             if matched is not None:
                 c, s = math.cos(state[2]), math.sin(state[2])
                 turned = points @ np.array([[c, s], [-s, c]])  # R(heading) p, row-wise
-                on_field = turned + state[:2]
-                dist = np.einsum("mx,mx->m", on_field - start_pt, normal)
-                jac_h = normal[:, 0] * -turned[:, 1] + normal[:, 1] * turned[:, 0]
-                rows.append(np.column_stack([normal, jac_h]))
-                residuals.append(-dist)
-                weights.append(line_w)
-            h = np.concatenate(rows)
-            r = np.concatenate(residuals)
-            w = np.concatenate(weights)
+                h[2 * n :, :2] = normal
+                h[2 * n :, 2] = normal[:, 1] * turned[:, 0] - normal[:, 0] * turned[:, 1]
+                # signed distance of each end point from its field line, wanted: 0
+                r[2 * n :] = offset - np.einsum("mx,mx->m", turned + state[:2], normal)
             hw = h.T * w
             info = info_prior + hw @ h
             delta_prior = prior - state
             delta_prior[2] = _wrap_rad(delta_prior[2])
-            step = np.linalg.solve(info, info_prior @ delta_prior + hw @ r)
-            state = state + step
+            state = state + np.linalg.solve(info, info_prior @ delta_prior + hw @ r)
             state[2] = _wrap_rad(state[2])
-        return state, np.linalg.inv(info)
+        return state, np.linalg.inv(info), agrees
+
+    def _agrees(self, innovation: Array, jac: Array, cov: Array, variances: Array) -> bool:
+        """Whether every landmark's innovation fits S = H P H^T + R within the kidnap gate."""
+        s = jac @ cov @ jac.transpose(0, 2, 1)
+        s[:, 0, 0] += variances[:, 0]
+        s[:, 1, 1] += variances[:, 1]
+        chi2 = np.einsum("ni,nij,nj->n", innovation, np.linalg.inv(s), innovation)
+        return bool(np.all(chi2 < self.config.kidnap_chi2))
 
 
 def _range_bearing(state: Array, field: Array) -> tuple[Array, Array]:

@@ -81,10 +81,10 @@ class WorldModel:
         self.opponents = PlayerTracker()
         #: time of the last See perceptor
         self.last_vision_time: float | None = None
-        #: height of the torso centre above the ground (m), from the feet's kinematics
-        self.torso_height = -self.robot.spec.body("rfoot").centre[2] + 0.01
-        self._transforms = self._kinematics.transforms({})
+        self._joints: dict[str, float] = {}
+        self._transform_array: Array | None = None
         self._body_transforms: dict[str, Array] | None = None
+        self._torso_height: float | None = None
         self._level = np.eye(3)
 
     # ------------------------------------------------------------------ the cycle
@@ -93,10 +93,10 @@ class WorldModel:
         dt = self._advance_time(perception.time)
         self._read_game_state(perception)
         self.robot.update(perception, dt)
-        self._transforms = self._kinematics.transforms(perception.joints)
-        self._body_transforms = None
+        # kinematics is computed when first needed in this cycle (vision, or a reader)
+        self._joints = perception.joints
+        self._transform_array = self._body_transforms = self._torso_height = None
         self._level = level_rotation(self.robot.up)
-        self.torso_height = self._height_above_feet()
         gyro = self.robot.gyro_deg_s
         turn_rate = float(gyro @ self.robot.up)  # about the world's vertical
         self.localizer.predict(turn_rate, dt)
@@ -125,6 +125,21 @@ class WorldModel:
             self.ball.reset()  # its positions were in the other frame
             self.teammates.forget()
             self.opponents.forget()
+
+    @property
+    def _transforms(self) -> Array:
+        """This cycle's forward kinematics, (bodies, 4, 4) in spec order."""
+        if self._transform_array is None:
+            self._transform_array = self._kinematics.transforms(self._joints)
+        return self._transform_array
+
+    @property
+    def torso_height(self) -> float:
+        """Height of the torso centre above the ground (m): above the lowest sole corner,
+        from this cycle's kinematics and tilt (so it assumes a foot is on the ground)."""
+        if self._torso_height is None:
+            self._torso_height = self._height_above_feet()
+        return self._torso_height
 
     def _height_above_feet(self) -> float:
         """The torso's height above the lowest sole corner, measured along the vertical."""
