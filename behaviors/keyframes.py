@@ -154,10 +154,14 @@ def get_sequence(name: str, mirror: bool = False) -> KeyframeSequence:
 
 
 def mirrored(sequence: KeyframeSequence) -> KeyframeSequence:
-    """The same motion with left and right swapped, through ``behaviors.mirror``."""
-    from behaviors.mirror import mirror_joint_angles  # a colleague's module: imported on use
+    """The same motion with left and right swapped (``behaviors.mirror.mirror_keyframes``)."""
+    from behaviors.mirror import mirror_keyframes  # imported on use: mirror pulls in numpy tables
 
-    frames = tuple(replace(f, joints=mirror_joint_angles(dict(f.joints))) for f in sequence.frames)
+    swapped = mirror_keyframes((frame.joints, frame.duration) for frame in sequence.frames)
+    frames = tuple(
+        replace(frame, joints=joints)
+        for frame, (joints, _) in zip(sequence.frames, swapped, strict=True)
+    )
     return replace(sequence, name=f"{sequence.name} (mirrored)", frames=frames)
 
 
@@ -185,6 +189,11 @@ class KeyframePlayer:
         self._frame_starts: list[dict[str, float]] | None = None
         self._frame_ends = list(_cumulative(f.total for f in sequence.frames))
         self._total_cycles = max(1, round(sequence.duration / CYCLE_SECONDS))
+        named: set[str] = set()
+        self._named_before: list[frozenset[str]] = []
+        for frame in sequence.frames:
+            self._named_before.append(frozenset(named))
+            named.update(frame.joints)
 
     @property
     def finished(self) -> bool:
@@ -218,11 +227,13 @@ class KeyframePlayer:
         fraction = (time - frame_start_time) / duration if duration > 0 else 1.0
         weight = ease(frame.interpolation, fraction)
         start = self._frame_starts[index]
-        blended = {
-            name: start.get(name, target) + (target - start.get(name, target)) * weight
+        # joints named by earlier frames keep their last target; unnamed ones are left alone
+        targets = {name: start[name] for name in self._named_before[index]}
+        targets.update(
+            (name, start.get(name, target) + (target - start.get(name, target)) * weight)
             for name, target in frame.joints.items()
-        }
-        return blended, frame
+        )
+        return targets, frame
 
     def step(self, commands: JointCommands, joints_deg: Mapping[str, float]) -> bool:
         """Write this cycle's targets into ``commands``; True on the cycle the sequence ends

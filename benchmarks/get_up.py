@@ -28,8 +28,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import behaviors.get_up  # noqa: F401  (registers the skills)
-from behaviors.joint_control import CYCLE_SECONDS, JointCommands
-from behaviors.skill import Skill, SkillContext
+from behaviors.joint_control import CYCLE_SECONDS
+from behaviors.manager import Behavior
 from sim.session import Session, SessionConfig
 from world.effectors import EffectorMessage, write_effectors
 from world.nao_model import ROBOT_TYPES
@@ -45,19 +45,18 @@ STANDING_HEIGHT_FRACTION = 0.8
 
 
 class LocalDriver:
-    """One agent's loop in-process: perceive, run a skill, send its joint speeds, step.
+    """One agent's loop in-process: perceive, run skills through the manager, send, step.
 
-    The skill sees only what the perception bytes say (through ``RobotState``); the simulator
-    is read by the trial's referee code alone.
+    The skills see only what the perception bytes say (through ``RobotState``); the simulator
+    is read by the trial's own checks alone.
     """
 
     def __init__(self, session: Session, agent: int, robot_type: int) -> None:
         self.session = session
         self.agent = agent
         self.state = RobotState(robot_type)
-        self.commands = JointCommands(robot_type)
-        self.context = SkillContext(SimpleNamespace(robot=self.state), self.commands, None)
-        self._skills: dict[str, Skill] = {}
+        self.behavior = Behavior(SimpleNamespace(robot=self.state), robot_type)
+        self.commands = self.behavior.commands
 
     def perceive(self) -> None:
         self.state.update(parse_perception(self.session.perception(self.agent)))
@@ -68,19 +67,12 @@ class LocalDriver:
         self.session.step()
 
     def run_skill(self, name: str, *args: object) -> bool:
-        """One cycle of a registered skill; True when it reports finished."""
-        skill = self._skills.get(name)
-        if skill is None:
-            skill = self._skills[name] = Skill.registry[name]()
-            skill.reset()
+        """One cycle of ``Behavior.execute(name, *args)``; True when the skill has finished."""
         self.perceive()
-        self.commands.clear()
-        finished = skill.step(self.context, *args)
-        self.send(self.commands.effector_speeds(self.state.joints_deg))
+        self.behavior.begin_cycle()
+        finished = self.behavior.execute(name, *args)
+        self.send(self.behavior.effector_speeds())
         return finished
-
-    def reset_skill(self, name: str) -> None:
-        self._skills.pop(name, None)
 
 
 def join(session: Session, robot_type: int, rng: np.random.Generator) -> LocalDriver:
