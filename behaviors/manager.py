@@ -19,6 +19,7 @@ imports the built-in ones.
 
 from __future__ import annotations
 
+import contextlib
 import inspect
 import typing
 from dataclasses import dataclass
@@ -210,17 +211,16 @@ class _Signature:
 
     @classmethod
     def of(cls, skill_class: type[Skill]) -> _Signature:
-        full = inspect.signature(skill_class.step)
-        params = list(full.parameters.values())[2:]  # drop self and context
-        try:
-            hints = typing.get_type_hints(skill_class.step)
-        except (NameError, TypeError):
-            hints = {}
-        types = {p.name: hints[p.name] for p in params if p.name in hints}
-        return cls(full.replace(parameters=params), types)
+        signature = _step_signature(skill_class)
+        types = {
+            p.name: p.annotation
+            for p in signature.parameters.values()
+            if p.annotation is not inspect.Parameter.empty and not isinstance(p.annotation, str)
+        }
+        return cls(signature, types)
 
     def text(self, name: str) -> str:
-        return f"{name}{self.signature}"
+        return f"{name}{_signature_text(self.signature)}"
 
     def check(self, name: str, args: tuple[Any, ...]) -> None:
         try:
@@ -270,13 +270,48 @@ def _type_name(expected: Any) -> str:
     return getattr(expected, "__name__", None) or str(expected)
 
 
+def _step_signature(skill_class: type[Skill]) -> inspect.Signature:
+    """``step``'s parameters after ``self`` and ``context``, with annotations evaluated where
+    possible (as ``inspect.signature(eval_str=True)`` would, but one parameter at a time, so that
+    one annotation naming a type imported only for type checking does not lose all the others).
+    An annotation that cannot be evaluated stays a string and is not checked."""
+    step = skill_class.step
+    raw = list(inspect.signature(step).parameters.values())[2:]
+    namespace = getattr(inspect.unwrap(step), "__globals__", {})
+    params = []
+    for param in raw:
+        annotation = param.annotation
+        if isinstance(annotation, str):
+            # evaluate the skill's own annotation text; one that fails is simply not checked
+            with contextlib.suppress(Exception):
+                annotation = eval(annotation, namespace)
+        params.append(param.replace(annotation=annotation))
+    return inspect.Signature(params)
+
+
+def _signature_text(signature: inspect.Signature) -> str:
+    """``(distance: float, label: str | None = None)``: annotations as written in code."""
+    parts = []
+    for param in signature.parameters.values():
+        text = param.name
+        if param.kind is inspect.Parameter.VAR_POSITIONAL:
+            text = "*" + text
+        if param.annotation is not inspect.Parameter.empty:
+            annotation = param.annotation
+            if not isinstance(annotation, str):
+                annotation = inspect.formatannotation(annotation)
+            text += f": {annotation}"
+        if param.default is not inspect.Parameter.empty:
+            text += f" = {param.default!r}"
+        parts.append(text)
+    return "(" + ", ".join(parts) + ")"
+
+
 def describe_skills() -> str:
     """One line per registered skill: its call signature and the first line of its docstring."""
     lines = []
     for name in sorted(Skill.registry):
         cls = Skill.registry[name]
-        params = list(inspect.signature(cls.step).parameters.values())[2:]
-        signature = inspect.Signature(params)
         doc = (inspect.getdoc(cls) or "").split("\n", 1)[0]
-        lines.append(f"  {name}{signature}  {doc}".rstrip())
+        lines.append(f"  {name}{_signature_text(_step_signature(cls))}  {doc}".rstrip())
     return "\n".join(lines)
