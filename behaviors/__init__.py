@@ -30,7 +30,12 @@ from behaviors.mirror import (
 from behaviors.skill import Skill, SkillContext
 
 #: Modules whose skills every agent has; add a module here when it defines built-in skills.
-BUILTIN_SKILL_MODULES: tuple[str, ...] = ("behaviors.basic",)
+BUILTIN_SKILL_MODULES: tuple[str, ...] = (
+    "behaviors.basic",
+    "behaviors.poses",
+    "behaviors.keyframes",
+    "behaviors.get_up",
+)
 
 for _module in BUILTIN_SKILL_MODULES:
     importlib.import_module(_module)

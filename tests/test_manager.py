@@ -253,7 +253,7 @@ def test_importing_behaviors_registers_the_builtin_skills():
     code = "import behaviors, behaviors.skill as s; print(' '.join(sorted(s.Skill.registry)))"
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
-    assert {"zero", "hold"} <= set(result.stdout.split())
+    assert {"zero", "hold", "pose", "keyframe", "get_up"} <= set(result.stdout.split())
     assert "behaviors.basic" in behaviors.BUILTIN_SKILL_MODULES
 
 
