@@ -145,6 +145,11 @@ class Behavior:
             instance = self._skills[name] = cls()
         return instance
 
+    @property
+    def skill_names(self) -> tuple[str, ...]:
+        """Every registered skill name, sorted (what ``execute`` accepts)."""
+        return tuple(sorted(Skill.registry))
+
     # ------------------------------------------------------------------ what ran
     @property
     def current(self) -> BehaviorRun | None:

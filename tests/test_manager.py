@@ -211,6 +211,7 @@ def test_unknown_skill_lists_every_registered_skill(manager):
     message = str(error.value)
     for name in Skill.registry:
         assert name in message
+    assert set(manager.skill_names) == set(Skill.registry)
     assert "test_typed(distance: float, label: str | None = None)" in message
 
 
