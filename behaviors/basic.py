@@ -48,5 +48,6 @@ class Hold(Skill):
             self._pose = {name: current.get(name, 0.0) for name in context.commands.joint_names}
         context.commands.set_targets(self._pose)
         # compare with the targets as clipped to the joint ranges, which the joints can reach
-        held = {name: context.commands.targets()[name] for name in self._pose}
+        targets = context.commands.targets()
+        held = {name: targets[name] for name in self._pose}
         return _reached(current, held, REACHED_DEG)
