@@ -176,12 +176,10 @@ class WorldModel:
             lines = ego[line_row:part_row, :2].reshape(-1, 2, 2)
             self.localizer.update(landmarks, lines, self.time)
         pose = self.localizer.pose
-        if pose is None:
-            return
-        if vision.ball is not None:
-            self._see_ball(ego[ball_row], torso_points[ball_row], pose)
         if vision.players:
             self._see_players(vision, ego[part_row:], pose)
+        if vision.ball is not None and pose is not None:
+            self._see_ball(ego[ball_row], torso_points[ball_row], pose)
 
     def _see_ball(self, ego: Array, torso_point: Array, pose: Pose2D) -> None:
         position = self._ego_to_field(ego, pose)
@@ -194,7 +192,7 @@ class WorldModel:
             pose.sigma_xy,
         )
 
-    def _see_players(self, vision: Vision, ego: Array, pose: Pose2D) -> None:
+    def _see_players(self, vision: Vision, ego: Array, pose: Pose2D | None) -> None:
         row = 0
         for player in vision.players:
             count = len(player.parts)
@@ -204,7 +202,7 @@ class WorldModel:
                 if self.team_name is None:
                     self.team_name = player.team  # the own arms carry the own team name
                 continue
-            if self.team_name is None:
+            if self.team_name is None or pose is None:
                 continue
             field_points = self._ego_to_field(points, pose)
             parts = {
