@@ -54,7 +54,6 @@ class KinematicModel:
     def __init__(self, spec: RobotSpec) -> None:
         self.spec = spec
         joints = spec.joints
-        n = len(joints)
         self.joint_names: tuple[str, ...] = tuple(j.perceptor for j in joints)
         self.body_names: tuple[str, ...] = tuple(b.name for b in spec.bodies)
         index_of_child = {j.child: k for k, j in enumerate(joints)}
@@ -65,23 +64,33 @@ class KinematicModel:
         )
         axes = np.array([j.axis for j in joints], dtype=float)
         axes /= np.linalg.norm(axes, axis=1, keepdims=True)
-        # Rodrigues: R = I + sin(a) K + (1 - cos(a)) K^2, written into 4x4 transforms whose
-        # translation is the anchor offset (translate to the anchor, then turn)
-        skew = np.zeros((n, 4, 4))
-        skew[:, 0, 1], skew[:, 0, 2] = -axes[:, 2], axes[:, 1]
-        skew[:, 1, 0], skew[:, 1, 2] = axes[:, 2], -axes[:, 0]
-        skew[:, 2, 0], skew[:, 2, 1] = -axes[:, 1], axes[:, 0]
-        self._skew = skew
-        self._skew2 = skew @ skew
-        self._base = np.tile(np.eye(4), (n, 1, 1))
-        self._base[:, :3, 3] = offsets
         self._offsets = offsets
         self._parent = parent
-        self._grid_shape, self._slot = self._chain_grid(parent)
-        self._identity_grid = np.tile(np.eye(4), (self._grid_shape[0] * self._grid_shape[1], 1, 1))
+        (chains, depth), self._slot = self._chain_grid(parent)
+        # the grid has one extra chain that no joint uses: its slots stay identities, and the
+        # torso's row points at one of them
+        self._grid_shape = (chains + 1, depth)
+        size = (chains + 1) * depth
+        self._torso_slot = chains * depth
+        # Rodrigues: R = I + sin(a) K + (1 - cos(a)) K^2, laid out in the grid as 4x4
+        # transforms whose translation is the anchor offset (translate to the anchor, then
+        # turn); padding slots have K = 0 and no offset, so they stay identities
+        skew = np.zeros((size, 4, 4))
+        ax = np.zeros((size, 3))
+        ax[self._slot] = axes
+        skew[:, 0, 1], skew[:, 0, 2] = -ax[:, 2], ax[:, 1]
+        skew[:, 1, 0], skew[:, 1, 2] = ax[:, 2], -ax[:, 0]
+        skew[:, 2, 0], skew[:, 2, 1] = -ax[:, 1], ax[:, 0]
+        self._skew = skew
+        self._skew2 = skew @ skew
+        self._base = np.tile(np.eye(4), (size, 1, 1))
+        self._base[self._slot, :3, 3] = offsets
+        self._grid_angles = np.zeros(size)
         # each body: the joint that moves it (-1: torso) and its centre in that joint's frame
         body_joint = [index_of_child.get(b.name, -1) for b in spec.bodies]
-        self._body_frame = np.array([k + 1 for k in body_joint])  # row 0 = the torso
+        self._body_slot = np.array(
+            [self._slot[k] if k >= 0 else self._torso_slot for k in body_joint]
+        )
         self._body_offset = np.tile(np.eye(4), (len(body_joint), 1, 1))
         for i, (body, k) in enumerate(zip(spec.bodies, body_joint, strict=True)):
             if k >= 0:
@@ -127,28 +136,31 @@ class KinematicModel:
         get = joints_deg.get
         return np.radians([get(name, 0.0) for name in self.joint_names])
 
-    def joint_frames(self, angles_rad: NDArray[np.float64]) -> NDArray[np.float64]:
-        """4x4 transforms (n, 4, 4) of every joint frame (at its anchor, turned by its angle)
-        relative to the torso, in spec joint order."""
-        s = np.sin(angles_rad)[:, None, None]
-        c = np.cos(angles_rad)[:, None, None]
-        local = self._base + s * self._skew + (1.0 - c) * self._skew2
-        grid = self._identity_grid.copy()
-        grid[self._slot] = local
+    def _chain_products(self, angles_rad: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The whole grid of joint frames relative to the torso, (slots, 4, 4)."""
+        angles = self._grid_angles.copy()
+        angles[self._slot] = angles_rad
+        s = np.sin(angles)[:, None, None]
+        c = np.cos(angles)[:, None, None]
+        grid = self._base + s * self._skew + (1.0 - c) * self._skew2
         chains, depth = self._grid_shape
         grid = grid.reshape(chains, depth, 4, 4)
         step = 1
         while step < depth:  # Hillis-Steele prefix product along each chain
             grid[:, step:] = grid[:, :-step] @ grid[:, step:]
             step *= 2
-        return grid.reshape(-1, 4, 4)[self._slot]
+        return grid.reshape(-1, 4, 4)
+
+    def joint_frames(self, angles_rad: NDArray[np.float64]) -> NDArray[np.float64]:
+        """4x4 transforms (n, 4, 4) of every joint frame (at its anchor, turned by its angle)
+        relative to the torso, in spec joint order."""
+        return self._chain_products(angles_rad)[self._slot]
 
     def transforms(self, joints_deg: Mapping[str, float]) -> NDArray[np.float64]:
         """4x4 transforms of every body centre relative to the torso, (bodies, 4, 4) in the
         spec's body order."""
-        frames = self.joint_frames(self.angles_rad(joints_deg))
-        with_torso = np.concatenate([np.eye(4)[None], frames])
-        return with_torso[self._body_frame] @ self._body_offset
+        grid = self._chain_products(self.angles_rad(joints_deg))
+        return grid[self._body_slot] @ self._body_offset
 
     def body_transforms(self, joints_deg: Mapping[str, float]) -> dict[str, Matrix]:
         """Body name -> 4x4 transform of its centre relative to the torso."""
