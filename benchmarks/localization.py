@@ -5,8 +5,10 @@ Run: ``.venv/bin/python benchmarks/localization.py [--cycles N]``. Prints ``name
 
 * ``loc_error_m_median`` / ``loc_error_m_p90`` / ``loc_error_deg_median`` - pose error while the
   trainer carries a standing robot along a winding path (6 cm and 2 deg every 5 cycles, a
-  brisk walk), once for each team, every cycle after the first fix;
-* ``loc_restarts`` - how often the filter restarted from landmarks (the path has no jumps);
+  brisk walk), once for each team, every cycle after the first fix. The trainer's turns
+  reach no gyro, so the heading lags by up to 2 deg until the next image (see the p90);
+* ``loc_restarts`` - how often the filter restarted from landmarks (the path turns the robot
+  round on the spot, a 180 deg jump, where it meets the field's edge);
 * ``world_update_us_median`` / ``world_update_us_p99`` - ``WorldModel.update`` per cycle
   (perceptions parsed beforehand; two cycles in three carry no image);
 * ``world_update_with_fk_us_median`` - the same when a behaviour also reads this cycle's
