@@ -14,9 +14,10 @@ Frames used here:
 * **team** (field): x towards the opponent goal, y to the left, z up, origin at the centre
   spot. For the right team every world position is mirrored: (x, y) -> (-x, -y).
 
-Cost: :meth:`WorldModel.update` does the kinematics (one batched product per chain level) and
-the tilt every cycle; vision work (one array of all polars, a few small filter updates) only
-every third cycle when an image comes. ``benchmarks/localization.py`` measures it.
+Cost: :meth:`WorldModel.update` reads the body sensors, the tilt and the gyro's turn every
+cycle; the kinematics is computed when first asked for in a cycle (always when an image
+comes); vision work (one array of all polars, a few small filter updates) happens only every
+third cycle, when an image comes. ``benchmarks/localization.py`` measures it.
 """
 
 from __future__ import annotations
