@@ -86,15 +86,15 @@ class Strategy:
 
     def is_active(self, world) -> bool:
         """Closest to the ball among the teammates this agent knows about."""
-        ball = world.ball_field_position()
-        if ball is None:
+        ball = world.ball.position
+        if ball is None or world.pose is None or world.time is None:
             return False
-        me = world.my_field_position()
-        mine = math.dist(me, ball)
-        for mate in world.teammate_positions(TEAMMATE_MEMORY_S):
-            if math.dist(mate, ball) < mine:
-                return False
-        return True
+        mine = math.dist((world.pose.x, world.pose.y), ball)
+        return all(
+            math.dist(mate.position, ball) >= mine
+            for mate in world.teammates.recent(world.time, TEAMMATE_MEMORY_S)
+            if mate.unum != world.unum
+        )
 
     # ------------------------------------------------------------------ actions
     def _beam(self, world) -> tuple[float, float, float] | None:
@@ -110,8 +110,8 @@ class Strategy:
 
     def _go_for_ball(self, world, behavior) -> None:
         if "walk" in behavior.skill_names:
-            ball = world.ball_field_position()
-            behavior.execute("walk", ball[0], ball[1], None)
+            x, y = world.ball.position
+            behavior.execute("walk", x, y, None)
         else:
             behavior.execute("pose", "stand")
 
