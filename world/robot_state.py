@@ -26,6 +26,28 @@ STEADY_ACCELERATION = 0.15
 FALLEN_TILT_DEG = 55.0
 
 
+def _tilt_step(
+    up: np.ndarray, gyro_deg_s: tuple, accelerometer: tuple, dt: float
+) -> tuple[float, float, float]:
+    """One complementary-filter step in plain floats (this runs every cycle for every agent,
+    where numpy's per-call cost on 3-vectors would dominate)."""
+    ux, uy, uz = float(up[0]), float(up[1]), float(up[2])
+    wx, wy, wz = (math.radians(g) for g in gyro_deg_s)
+    # a world-fixed vector seen from a turning frame turns the other way: du/dt = -w x u
+    ux, uy, uz = (
+        ux - (wy * uz - wz * uy) * dt,
+        uy - (wz * ux - wx * uz) * dt,
+        uz - (wx * uy - wy * ux) * dt,
+    )
+    ax, ay, az = accelerometer
+    magnitude = math.sqrt(ax * ax + ay * ay + az * az)
+    if abs(magnitude - GRAVITY) < STEADY_ACCELERATION * GRAVITY:
+        keep, trust = 1 - ACCELEROMETER_TRUST, ACCELEROMETER_TRUST / magnitude
+        ux, uy, uz = keep * ux + trust * ax, keep * uy + trust * ay, keep * uz + trust * az
+    norm = math.sqrt(ux * ux + uy * uy + uz * uz)
+    return ux / norm, uy / norm, uz / norm
+
+
 @dataclass
 class RobotState:
     """Joint angles (degrees, by perceptor name), IMU readings and the torso's tilt estimate."""
@@ -46,21 +68,10 @@ class RobotState:
     def update(self, perception: Perception, dt: float = CYCLE_SECONDS) -> None:
         """Take one perception message's body readings."""
         self.joints_deg = perception.joints
-        self.gyro_deg_s = np.asarray(perception.gyro, dtype=float)
-        self.accelerometer = np.asarray(perception.accelerometer, dtype=float)
+        self.gyro_deg_s = np.array(perception.gyro, dtype=float)
+        self.accelerometer = np.array(perception.accelerometer, dtype=float)
         self.foot_pressure = perception.force_resistance
-        self._update_tilt(dt)
-
-    def _update_tilt(self, dt: float) -> None:
-        omega = np.radians(self.gyro_deg_s)
-        # a world-fixed vector seen from a turning frame turns the other way: du/dt = -w x u
-        up = self.up - np.cross(omega, self.up) * dt
-        magnitude = float(np.linalg.norm(self.accelerometer))
-        if abs(magnitude - GRAVITY) < STEADY_ACCELERATION * GRAVITY:
-            up = (1 - ACCELEROMETER_TRUST) * up + ACCELEROMETER_TRUST * (
-                self.accelerometer / magnitude
-            )
-        self.up = up / np.linalg.norm(up)
+        self.up = np.array(_tilt_step(self.up, perception.gyro, perception.accelerometer, dt))
 
     # ------------------------------------------------------------------ derived
     @property
