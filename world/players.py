@@ -12,8 +12,6 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
-import numpy as np
-
 __all__ = ["FALLEN_HEAD_HEIGHT", "PlayerObservation", "PlayerTracker"]
 
 #: A robot whose head centre is lower than this (m) is lying on the ground (standing: ~0.5 m).
@@ -48,8 +46,11 @@ class PlayerObservation:
 def _standing_point(parts: Mapping[str, Vec3]) -> tuple[float, float]:
     feet = [parts[name] for name in ("lfoot", "rfoot") if name in parts]
     chosen = feet if len(feet) == 2 else list(parts.values())
-    xy = np.asarray(chosen, dtype=float)[:, :2].mean(axis=0)
-    return (float(xy[0]), float(xy[1]))
+    # plain floats: this runs for every robot in every image
+    return (
+        sum(p[0] for p in chosen) / len(chosen),
+        sum(p[1] for p in chosen) / len(chosen),
+    )
 
 
 class PlayerTracker:

@@ -194,31 +194,28 @@ class WorldModel:
         )
 
     def _see_players(self, vision: Vision, ego: Array, pose: Pose2D | None) -> None:
+        # one array operation for every part of every robot, then plain lists per robot
+        ego_rows = ego.tolist()
+        field_rows = self._ego_to_field(ego, pose).tolist() if pose is not None else None
         row = 0
         for player in vision.players:
-            count = len(player.parts)
-            points = ego[row : row + count]
-            row += count
-            if self._is_own_body(player.team, player.unum, points):
+            start, row = row, row + len(player.parts)
+            if self._is_own_body(player.team, player.unum, ego_rows[start:row]):
                 if self.team_name is None:
                     self.team_name = player.team  # the own arms carry the own team name
                 continue
-            if self.team_name is None or pose is None:
+            if self.team_name is None or field_rows is None:
                 continue
-            field_points = self._ego_to_field(points, pose)
-            parts = {
-                name: (float(p[0]), float(p[1]), float(p[2]))
-                for name, p in zip(player.parts, field_points, strict=True)
-            }
+            parts = dict(zip(player.parts, map(tuple, field_rows[start:row]), strict=True))
             tracker = self.teammates if player.team == self.team_name else self.opponents
             tracker.observe(player.team, player.unum, parts, self.time)
 
-    def _is_own_body(self, team: str, unum: int, ego: Array) -> bool:
+    def _is_own_body(self, team: str, unum: int, ego: list[list[float]]) -> bool:
         """Vision reports the robot's own lower arms like another robot's parts: same number,
         (once known) same team, every part within arm's reach of the torso."""
         if unum != self.unum or (self.team_name is not None and team != self.team_name):
             return False
-        return bool(np.all(np.hypot(ego[:, 0], ego[:, 1]) < OWN_PARTS_DISTANCE))
+        return all(math.hypot(p[0], p[1]) < OWN_PARTS_DISTANCE for p in ego)
 
     def _ego_to_field(self, ego: Array, pose: Pose2D) -> Array:
         """Ego-frame point(s) (..., 3) -> team-frame point(s), z above the ground."""
