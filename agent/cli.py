@@ -105,6 +105,21 @@ def _build_parser() -> argparse.ArgumentParser:
     match.add_argument("--real-time", action="store_true", help="no faster than 50 cycles/s")
     match.set_defaults(run=_run_match)
 
+    render = commands.add_parser(
+        "render",
+        help="render a short match to a GIF (headless, PyBullet's software renderer)",
+        description="Play the embedded match and save every Nth cycle, seen from a camera "
+        "that follows the ball, as an animated GIF.",
+        epilog="examples:\n  naosoccer render --duration 4 --out match.gif",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    render.add_argument("--duration", type=float, default=4.0, help="game seconds")
+    render.add_argument("--seed", type=int, default=0)
+    render.add_argument("--every", type=int, default=5, help="render every Nth cycle")
+    render.add_argument("--distance", type=float, default=6.0, help="camera distance (m)")
+    render.add_argument("--out", default="match.gif", help="output GIF")
+    render.set_defaults(run=_run_render)
+
     demo = commands.add_parser(
         "demo",
         help="embedded server plus a short scripted client (the README's main job for now)",
@@ -198,6 +213,26 @@ def _run_match(args: argparse.Namespace) -> int:
         f"played {result.game_time:.1f} s of game time in {result.wall_seconds:.1f} s "
         f"({result.realtime_factor:.2f}x real time)"
     )
+    print(result.score_line())
+    return 0
+
+
+def _run_render(args: argparse.Namespace) -> int:
+    from agent.match import run_match
+    from sim.render import Renderer, save_gif
+
+    frames = []
+    renderers = {}
+
+    def capture(session) -> None:
+        if session.cycle % args.every:
+            return
+        renderer = renderers.setdefault(id(session), Renderer(session))
+        frames.append(renderer.frame(distance=args.distance))
+
+    result = run_match(args.duration, seed=args.seed, on_event=print, on_cycle=capture)
+    path = save_gif(frames, args.out, fps=50 / args.every)
+    print(f"{len(frames)} frames -> {path}")
     print(result.score_line())
     return 0
 

@@ -50,8 +50,10 @@ def run_match(
     monitor_port: int | None = None,
     real_time: bool = False,
     on_event: Callable[[str], None] = print,
+    on_cycle: Callable[[object], None] | None = None,
 ) -> MatchResult:
-    """Play ``duration_s`` seconds of game time; events go to ``on_event`` as they happen."""
+    """Play ``duration_s`` seconds of game time; events go to ``on_event`` as they happen and
+    ``on_cycle(session)`` runs after every played cycle (renderers, recorders)."""
     from sim.server import SoccerServer
     from sim.session import Session, SessionConfig
 
@@ -66,7 +68,7 @@ def run_match(
     start = time.perf_counter()
     try:
         agents = _join_teams(server, [*left.agents(), *right.agents()])
-        _play(server, duration_s, real_time, on_event)
+        _play(server, duration_s, real_time, on_event, on_cycle)
     finally:
         server.close()
         session.close()
@@ -99,7 +101,13 @@ def _join_teams(server, agents: list[Agent]) -> list[Agent]:
     return joined
 
 
-def _play(server, duration_s: float, real_time: bool, on_event: Callable[[str], None]) -> None:
+def _play(
+    server,
+    duration_s: float,
+    real_time: bool,
+    on_event: Callable[[str], None],
+    on_cycle: Callable[[object], None] | None,
+) -> None:
     """Run cycles until ``duration_s`` of game time; kick off whenever the game waits for it
     (the start, and the second half), after the players had ``SETTLE_S`` to beam in."""
     session = server.session
@@ -116,6 +124,8 @@ def _play(server, duration_s: float, real_time: bool, on_event: Callable[[str], 
         for event in session.events[printed:]:
             on_event(f"[{referee.game_time:7.2f}] {event.text}")
         printed = len(session.events)
+        if on_cycle is not None:
+            on_cycle(session)
         if real_time:
             next_cycle += 0.02
             time.sleep(max(0.0, next_cycle - time.monotonic()))
