@@ -1,4 +1,4 @@
-"""Headless rendering: a frame shows the scene (the orange ball among the grass), GIFs are written."""
+"""Headless rendering: a frame shows the scene (the orange ball on the grass); GIFs are saved."""
 
 from __future__ import annotations
 
