@@ -76,7 +76,7 @@ class LocalDriver:
 
 
 def join(session: Session, robot_type: int, rng: np.random.Generator) -> LocalDriver:
-    """Connect a robot of ``robot_type``, beam it and let it settle in the stand pose."""
+    """Connect a robot of ``robot_type``, beam it, rise slowly into the stand pose, settle."""
     agent = session.add_agent()
     session.handle_message(agent, f"(scene {SCENE} {robot_type})".encode())
     session.step()
@@ -87,7 +87,11 @@ def join(session: Session, robot_type: int, rng: np.random.Generator) -> LocalDr
     session.step()
     session.step()
     driver = LocalDriver(session, agent, robot_type)
-    for _ in range(50):
+    # rise from the beam's zero pose slowly: jumping into the stand's bent knees at once tips
+    # the robot over
+    while not driver.run_skill("keyframe", "stand_up_slowly"):
+        pass
+    for _ in range(25):
         driver.run_skill("pose", "stand")
     return driver
 
