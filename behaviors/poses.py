@@ -15,9 +15,11 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 
 from behaviors.skill import Skill, SkillContext
+from world.kinematics import body_transforms
 from world.nao_model import robot_spec
 
 DATA_DIR = Path(__file__).resolve().parent / "data"
@@ -141,6 +143,33 @@ def pose_reached(
     return all(
         abs(joints_deg.get(n, float("inf")) - t) <= tolerance_deg for n, t in targets.items()
     )
+
+
+def support_margin(joints_deg: Mapping[str, float], robot_type: int = 0) -> float:
+    """How far (m) the centre of mass lies inside the feet's support area; negative: outside.
+
+    Why: a pose that a motion ends in or passes through slowly must keep the centre of mass
+    over the feet, or the robot tips over however well the joints follow. Computed from the
+    pose alone: forward kinematics of every body centre weighted by its mass, seen in the
+    frame of the right sole laid flat on the ground, against the rectangle spanned by both
+    foot boxes (toes left out: the conservative support). Meant for symmetric standing
+    poses, where both soles lie flat at once.
+    """
+    spec = robot_spec(robot_type)
+    transforms = body_transforms(spec, joints_deg)
+    masses = np.array([body.mass for body in spec.bodies])
+    centres = np.array([transforms[body.name][:3, 3] for body in spec.bodies])
+    com = masses @ centres / masses.sum()
+    sole = transforms["rfoot"]
+    level = sole[:3, :3].T  # torso frame -> right-foot frame (flat foot: level ground)
+    corners = []
+    for foot in ("rfoot", "lfoot"):
+        half = np.array(spec.body(foot).size[:2]) / 2
+        centre = level @ (transforms[foot][:3, 3] - sole[:3, 3])
+        corners += [centre[:2] - half, centre[:2] + half]
+    low, high = np.min(corners, axis=0), np.max(corners, axis=0)
+    point = (level @ (com - sole[:3, 3]))[:2]
+    return float(min(np.min(point - low), np.min(high - point)))
 
 
 class PoseSkill(Skill):

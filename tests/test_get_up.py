@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from behaviors.get_up import GetUpSkill, robot_stands, sequence_for
+from behaviors.poses import get_pose, support_margin
 from world.perception import ForceResistance, Perception
 from world.robot_state import RobotState
 
@@ -42,6 +43,30 @@ def test_sequences_are_looked_up_per_type_then_shared():
     assert sequence_for("get_up_front", 3).name in ("get_up_front_type3", "get_up_front")
     with pytest.raises(KeyError):
         sequence_for("no_such_motion", 0)
+
+
+@pytest.mark.parametrize("robot_type", range(5))
+def test_stand_and_squat_keep_the_centre_of_mass_over_the_feet(robot_type):
+    for name in ("stand", "squat"):
+        assert support_margin(get_pose(name).joints, robot_type) > 0.03, name
+    leaning_back = {"rlj5": -40.0, "llj5": -40.0}  # straight legs, torso 40 deg backwards
+    assert support_margin(leaning_back, robot_type) < 0.0
+
+
+@pytest.mark.parametrize("robot_type", range(5))
+def test_the_stand_pose_is_held_upright(robot_type):
+    """Risen slowly into ``stand``, the torso stays within a few degrees of upright."""
+    session = Session(SessionConfig(seed=3, beam_noise=False))
+    try:
+        driver = join(session, robot_type, np.random.default_rng(3))
+        robot = session.agents[driver.agent].robot
+        tilts = []
+        for _ in range(75):
+            driver.run_skill("pose", "stand")
+            tilts.append(np.degrees(np.arccos(min(1.0, robot.torso_up()[2]))))
+        assert max(tilts) < 8.0, tilts
+    finally:
+        session.close()
 
 
 @pytest.mark.parametrize("robot_type", [0, 4])
