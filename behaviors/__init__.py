@@ -35,6 +35,7 @@ BUILTIN_SKILL_MODULES: tuple[str, ...] = (
     "behaviors.poses",
     "behaviors.keyframes",
     "behaviors.get_up",
+    "behaviors.walk",
 )
 
 for _module in BUILTIN_SKILL_MODULES:

@@ -1,0 +1,257 @@
+"""The step generator: where each sole should be, cycle by cycle, for a commanded step.
+
+A walk is a sequence of steps of ``step_cycles`` server cycles (default 8, 0.16 s). In every
+step one leg swings (``left_active`` True while the LEFT leg swings) and the other carries the
+robot; the phase is ``(t, left_active)`` with ``t = 0 .. step_cycles - 1`` the cycle inside
+the step, and the swinging leg changes with every step.
+
+Each step moves the torso by a :class:`StepCommand` (forward, left, turn). The generator keeps
+both soles as 2-D poses (x forward, y left, yaw) in the *walk frame*: the torso's point on the
+ground, axes along its heading. The support sole stays put on the ground, so in the walk frame
+it slides backwards by the torso's motion, a share of the step every cycle; the swing sole
+goes from where it lifted off to its landing pose (its neutral place plus half the step, so
+that it lands as far ahead as the support foot will end up behind) along a smooth profile,
+raised by ``swing_height * sin(pi s)``. A lateral sway shifts the torso over the support foot
+(``sway * sin(pi s)``). Heights are relative to the torso centre and the walk frame is tilted
+forward by ``lean`` so that the torso leans into the walk. The output,
+:class:`FootTargets`, is sole points and foot yaw in ego axes relative to the torso, ready for
+:meth:`behaviors.ik.LegIK.solve_sole`.
+
+Numpy-free and deterministic: the same commands give the same targets.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+__all__ = [
+    "FootPose",
+    "FootTargets",
+    "StepCommand",
+    "StepGenerator",
+    "StepParameters",
+]
+
+
+@dataclass(frozen=True, slots=True)
+class StepParameters:
+    """The shape of the gait (metres, radians, cycles)."""
+
+    #: cycles per step (one leg's swing)
+    step_cycles: int = 8
+    #: sole height below the torso centre while walking (positive number)
+    torso_height: float = 0.35
+    #: neutral sideways distance of each sole from the torso's centre line
+    foot_spread: float = 0.06
+    #: neutral forward position of the soles relative to the torso centre
+    foot_forward: float = 0.0
+    #: highest lift of the swing sole
+    swing_height: float = 0.03
+    #: sideways torso shift towards the support foot at mid-step
+    sway: float = 0.0
+    #: forward tilt of the torso over the feet (rad)
+    lean: float = 0.0
+    #: the largest step (torso motion per step): forward, sideways, turn
+    max_forward: float = 0.12
+    max_side: float = 0.05
+    max_turn: float = 0.4
+    #: how far the backward steps may go, as a share of max_forward
+    backward_share: float = 0.6
+
+    def __post_init__(self) -> None:
+        if self.step_cycles < 2:
+            raise ValueError(f"step_cycles must be at least 2, got {self.step_cycles}")
+        if self.torso_height <= 0.0 or self.foot_spread <= 0.0:
+            raise ValueError("torso_height and foot_spread must be positive")
+        if self.swing_height < 0.0 or self.sway < 0.0:
+            raise ValueError("swing_height and sway must not be negative")
+
+
+@dataclass(frozen=True, slots=True)
+class StepCommand:
+    """The torso's motion over one step: forward and left (m), turn (rad, counter-clockwise)."""
+
+    forward: float = 0.0
+    left: float = 0.0
+    turn: float = 0.0
+
+    def clipped(self, params: StepParameters) -> StepCommand:
+        """The command within the step limits (an ellipse-like box: each axis on its own)."""
+        low = -params.max_forward * params.backward_share
+        return StepCommand(
+            min(max(self.forward, low), params.max_forward),
+            min(max(self.left, -params.max_side), params.max_side),
+            min(max(self.turn, -params.max_turn), params.max_turn),
+        )
+
+    @property
+    def is_zero(self) -> bool:
+        return self.forward == 0.0 and self.left == 0.0 and self.turn == 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class FootPose:
+    """A sole on (or above) the ground, in the walk frame: x forward, y left, yaw (rad)."""
+
+    x: float
+    y: float
+    yaw: float = 0.0
+
+    def moved_back(self, forward: float, left: float, turn: float) -> FootPose:
+        """The same ground point seen after the walk frame moved by (forward, left, turn)."""
+        dx, dy = self.x - forward, self.y - left
+        c, s = math.cos(turn), math.sin(turn)
+        return FootPose(c * dx + s * dy, -s * dx + c * dy, self.yaw - turn)
+
+
+@dataclass(frozen=True, slots=True)
+class FootTargets:
+    """One cycle's goal for both soles: ego axes (x forward, y left, z up) relative to the
+    torso centre, and each foot's yaw (rad) relative to the torso."""
+
+    left: tuple[float, float, float]
+    right: tuple[float, float, float]
+    left_yaw: float
+    right_yaw: float
+    #: the phase these targets belong to
+    t: int
+    left_active: bool
+
+
+def _smooth(s: float) -> float:
+    """0 -> 1 with zero slope at both ends: the swing foot leaves and lands gently."""
+    return 0.5 - 0.5 * math.cos(math.pi * s)
+
+
+class StepGenerator:
+    """Foot targets per cycle for a stream of step commands (see the module docstring).
+
+    Call :meth:`next_targets` once per cycle with the command for the current step; the
+    command is taken when a step starts (``t == 0``) and held for the whole step.
+    """
+
+    def __init__(self, params: StepParameters | None = None) -> None:
+        self.params = params or StepParameters()
+        self.reset()
+
+    def reset(self, left_first: bool = True) -> None:
+        """Feet side by side at their neutral places; the next step swings the left leg if
+        ``left_first``."""
+        p = self.params
+        self._left = FootPose(0.0, p.foot_spread)
+        self._right = FootPose(0.0, -p.foot_spread)
+        self._t = -1  # the first next_targets call starts a step
+        self._left_active = not left_first
+        self._command = StepCommand()
+        self._lift_off = self._left
+        self._landing = self._left
+
+    # ------------------------------------------------------------------ the phase
+    @property
+    def phase(self) -> tuple[int, bool]:
+        """(t, left_active) of the targets returned last (t = -1 before the first)."""
+        return self._t, self._left_active
+
+    @property
+    def command(self) -> StepCommand:
+        """The command of the step under way."""
+        return self._command
+
+    @property
+    def feet(self) -> tuple[FootPose, FootPose]:
+        """Where the left and right soles are (walk frame, as planned)."""
+        return self._left, self._right
+
+    @property
+    def at_step_end(self) -> bool:
+        """Whether the last targets ended a step (the next call starts a new one)."""
+        return self._t == self.params.step_cycles - 1
+
+    def with_params(self, params: StepParameters) -> None:
+        """Change the gait's shape; takes effect at once (use between steps)."""
+        self.params = params
+
+    # ------------------------------------------------------------------ stepping
+    def next_targets(self, command: StepCommand) -> FootTargets:
+        """Advance one cycle and return the soles' targets for it."""
+        p = self.params
+        if self._t < 0 or self._t >= p.step_cycles - 1:
+            self._start_step(command)
+        else:
+            self._t += 1
+        n = p.step_cycles
+        c = self._command
+        # the support foot moves back by 1/n of the step every cycle
+        share = 1.0 / n
+        support = self._support.moved_back(c.forward * share, c.left * share, c.turn * share)
+        # the swing foot's lift-off pose moves with the walk frame too, its landing is planned
+        # in the frame at the end of the step
+        s = (self._t + 1) / n
+        self._lift_off = self._lift_off.moved_back(
+            c.forward * share, c.left * share, c.turn * share
+        )
+        remaining = 1.0 - s
+        landing = self._landing_planned.moved_back(
+            -c.forward * remaining, -c.left * remaining, -c.turn * remaining
+        )
+        k = _smooth(s)
+        swing = FootPose(
+            self._lift_off.x + (landing.x - self._lift_off.x) * k,
+            self._lift_off.y + (landing.y - self._lift_off.y) * k,
+            self._lift_off.yaw + (landing.yaw - self._lift_off.yaw) * k,
+        )
+        if self._left_active:
+            self._left, self._right = swing, support
+        else:
+            self._left, self._right = support, swing
+        lift = p.swing_height * math.sin(math.pi * s)
+        # sway: the torso moves towards the support side, i.e. the soles move away from it
+        sway = p.sway * math.sin(math.pi * s) * (1.0 if self._left_active else -1.0)
+        return self._targets(lift, sway)
+
+    def _start_step(self, command: StepCommand) -> None:
+        p = self.params
+        self._t = 0
+        self._left_active = not self._left_active
+        self._command = command.clipped(p)
+        c = self._command
+        swing = self._left if self._left_active else self._right
+        side = 1.0 if self._left_active else -1.0
+        self._lift_off = swing
+        # landing pose in the walk frame at the END of this step: the neutral place turned by
+        # half the turn, ahead by half the step (the support foot ends half a step behind)
+        half = 0.5
+        yaw = c.turn * half
+        cy, sy = math.cos(yaw), math.sin(yaw)
+        neutral = side * p.foot_spread
+        self._landing_planned = FootPose(
+            -sy * neutral + c.forward * half, cy * neutral + c.left * half, yaw
+        )
+
+    @property
+    def _support(self) -> FootPose:
+        return self._right if self._left_active else self._left
+
+    def _targets(self, lift: float, sway: float) -> FootTargets:
+        p = self.params
+        left_z = -p.torso_height + (lift if self._left_active else 0.0)
+        right_z = -p.torso_height + (0.0 if self._left_active else lift)
+        left = self._tilted(self._left.x + p.foot_forward, self._left.y + sway, left_z)
+        right = self._tilted(self._right.x + p.foot_forward, self._right.y + sway, right_z)
+        return FootTargets(left, right, self._left.yaw, self._right.yaw, self._t, self._left_active)
+
+    def _tilted(self, x: float, y: float, z: float) -> tuple[float, float, float]:
+        """A point of the walk frame seen from a torso leaning forward by ``lean``."""
+        c, s = math.cos(self.params.lean), math.sin(self.params.lean)
+        return (c * x - s * z, y, s * x + c * z)
+
+    def stand_targets(self) -> FootTargets:
+        """The neutral stance (both soles at their neutral places, no lift, no sway)."""
+        saved = (self._left, self._right)
+        p = self.params
+        self._left = FootPose(0.0, p.foot_spread)
+        self._right = FootPose(0.0, -p.foot_spread)
+        targets = self._targets(0.0, 0.0)
+        self._left, self._right = saved
+        return replace(targets, t=self._t, left_active=self._left_active)

@@ -1,0 +1,438 @@
+"""Omnidirectional walk: ``walk_velocity(vx, vy, vturn_deg)`` and ``walk(x, y, heading_deg)``.
+
+The engine (:class:`WalkEngine`) turns a velocity into joint speeds every cycle:
+
+1. the commanded velocity is smoothed (bounded acceleration), then scaled to one step's torso
+   motion (:class:`~behaviors.step_generator.StepCommand`);
+2. the :class:`~behaviors.step_generator.StepGenerator` gives both soles' targets for the
+   cycle the command will act in, with the IMU's corrections added (below);
+3. :class:`~behaviors.ik.LegIK` turns them into leg angles;
+4. joint speeds are sent directly, not through the target follower, because the follower lags
+   four cycles and a step lasts eight: the server shows an action two perceptions later, so the
+   speed answering perception ``k`` moves the joint from ``k + 1`` to ``k + 2``. The angle at
+   ``k + 1`` is predicted from the current angle and the speed sent last cycle (a Smith
+   predictor), and the new speed is the target's own motion plus a share of the predicted error.
+
+Staying upright: a tilt makes the stance leg's ankle push back (pitch: ankle pitch; roll: ankle
+and hip roll), and the torso's pitch rate shifts the swing foot's landing point forward or back
+(a fall forwards is caught by stepping further forwards). Gains and the gait's shape per robot
+type are in ``behaviors/data/walk.yaml``.
+
+Odometry: every cycle the torso motion the step plan assumes (scaled by the per-type
+``odometry_scale`` measured in the simulator) goes to ``world.localizer.add_odometry``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields, replace
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from behaviors.ik import LegIK, leg_ik_for
+from behaviors.joint_control import CYCLE_SECONDS
+from behaviors.skill import Skill, SkillContext
+from behaviors.step_generator import FootTargets, StepCommand, StepGenerator, StepParameters
+from world.nao_model import ROBOT_TYPES, robot_spec
+
+__all__ = [
+    "WALK_FILE",
+    "WalkEngine",
+    "WalkParameters",
+    "WalkSkill",
+    "WalkVelocitySkill",
+    "walk_parameters",
+]
+
+WALK_FILE = Path(__file__).resolve().parent / "data" / "walk.yaml"
+
+
+@dataclass(frozen=True)
+class WalkParameters:
+    """Everything tunable about the walk of one robot type (see ``walk.yaml``)."""
+
+    step: StepParameters = field(default_factory=StepParameters)
+    #: largest velocity change per second: forward/sideways (m/s^2), turn (deg/s^2)
+    acceleration: float = 1.5
+    turn_acceleration_deg: float = 600.0
+    #: share of the predicted joint error corrected per cycle (0..1)
+    error_gain: float = 0.6
+    #: ankle pitch correction per degree of torso pitch and per deg/s of pitch rate
+    ankle_pitch_gain: float = 0.0
+    ankle_pitch_rate_gain: float = 0.0
+    #: ankle and hip roll corrections per degree of torso roll
+    ankle_roll_gain: float = 0.0
+    hip_roll_gain: float = 0.0
+    #: swing foot landing shift (m) per deg/s of pitch rate (forward fall -> longer step)
+    landing_pitch_rate_gain: float = 0.0
+    #: landing shift (m) per degree of pitch
+    landing_pitch_gain: float = 0.0
+    #: how much of the planned torso motion really happens (measured)
+    odometry_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    #: arm pose while walking (degrees), right side; the left mirrors it
+    arm_pitch_deg: float = -90.0
+    arm_out_deg: float = -10.0
+    #: toe joints (type 4) while walking, degrees: curled up, the loaded toes yield
+    toe_deg: float = 70.0
+    #: cycles to blend from the pose the walk found into the walk's stance
+    blend_cycles: int = 10
+
+
+def _read_parameters(data: dict[str, Any], source: str) -> WalkParameters:
+    """A :class:`WalkParameters` from a mapping with an optional ``step`` sub-mapping."""
+    known = {f.name for f in fields(WalkParameters)}
+    step_known = {f.name for f in fields(StepParameters)}
+    unknown = set(data) - known
+    if unknown:
+        raise ValueError(f"{source}: unknown walk parameter(s) {sorted(unknown)}")
+    step_data = dict(data.get("step") or {})
+    unknown = set(step_data) - step_known
+    if unknown:
+        raise ValueError(f"{source}: unknown step parameter(s) {sorted(unknown)}")
+    values = {k: v for k, v in data.items() if k != "step"}
+    if "odometry_scale" in values:
+        values["odometry_scale"] = tuple(float(v) for v in values["odometry_scale"])
+    return WalkParameters(step=StepParameters(**step_data), **values)
+
+
+@cache
+def walk_parameters(robot_type: int, path: Path = WALK_FILE) -> WalkParameters:
+    """The walk parameters of ``robot_type``: the file's ``default`` block overridden by its
+    ``type<N>`` block (both may hold a ``step`` sub-block)."""
+    if robot_type not in ROBOT_TYPES:
+        raise ValueError(f"robot type must be one of {ROBOT_TYPES}, got {robot_type!r}")
+    data = yaml.safe_load(path.read_text()) or {}
+    base = dict(data.get("default") or {})
+    own = dict(data.get(f"type{robot_type}") or {})
+    step = {**(base.get("step") or {}), **(own.get("step") or {})}
+    merged = {**base, **own, "step": step}
+    return _read_parameters(merged, f"{path} (type{robot_type})")
+
+
+class WalkEngine:
+    """The walk's state for one robot: step generator, smoothed velocity, joint predictor."""
+
+    def __init__(self, robot_type: int, params: WalkParameters | None = None) -> None:
+        self.robot_type = robot_type
+        self.params = params or walk_parameters(robot_type)
+        self.ik: LegIK = leg_ik_for(robot_type)
+        self.generator = StepGenerator(self.params.step)
+        spec = robot_spec(robot_type)
+        self._max_speed = {j.perceptor: j.max_speed for j in spec.joints}
+        self._has_toes = spec.has_toes
+        self.reset()
+
+    def reset(self) -> None:
+        """Start from standing still: no velocity, feet at the neutral stance."""
+        self.generator = StepGenerator(self.params.step)
+        self.velocity = (0.0, 0.0, 0.0)  # m/s, m/s, rad/s (smoothed)
+        self._last_speed: dict[str, float] = {}
+        self._previous_target: dict[str, float] | None = None
+        self._start_pose: dict[str, float] | None = None
+        self._cycles = 0
+        self._stepping = False
+
+    # ------------------------------------------------------------------ state
+    @property
+    def phase(self) -> tuple[int, bool]:
+        """(t, left_active) of the step under way (t = -1 before the first step)."""
+        return self.generator.phase
+
+    @property
+    def is_stopped(self) -> bool:
+        """Standing on both feet with no velocity and no step under way."""
+        return not self._stepping and self.velocity == (0.0, 0.0, 0.0)
+
+    # ------------------------------------------------------------------ one cycle
+    def step(self, context: SkillContext, vx: float, vy: float, vturn_deg: float) -> None:
+        """One cycle walking at (vx, vy) m/s and vturn_deg deg/s in the robot frame."""
+        self._smooth_velocity(vx, vy, math.radians(vturn_deg))
+        targets = self._next_foot_targets(context)
+        angles = self._leg_angles(targets, context)
+        self._add_arms(angles)
+        self._send(context, angles)
+        self._report_odometry(context)
+        self._cycles += 1
+
+    def _smooth_velocity(self, vx: float, vy: float, vturn: float) -> None:
+        a = self.params.acceleration * CYCLE_SECONDS
+        at = math.radians(self.params.turn_acceleration_deg) * CYCLE_SECONDS
+        x, y, w = self.velocity
+        x += min(max(vx - x, -a), a)
+        y += min(max(vy - y, -a), a)
+        w += min(max(vturn - w, -at), at)
+        self.velocity = (x, y, w)
+
+    def _step_command(self) -> StepCommand:
+        duration = self.params.step.step_cycles * CYCLE_SECONDS
+        x, y, w = self.velocity
+        return StepCommand(x * duration, y * duration, w * duration).clipped(self.params.step)
+
+    def _next_foot_targets(self, context: SkillContext) -> FootTargets:
+        """Targets of the next cycle, or the stance when standing still between steps."""
+        generator = self.generator
+        command = self._step_command()
+        still = command.is_zero or max(abs(command.forward), abs(command.left)) < 1e-3
+        still = still and abs(command.turn) < 1e-3
+        feet_home = self._feet_at_neutral()
+        between_steps = generator.phase[0] < 0 or generator.at_step_end
+        if still and between_steps and feet_home:
+            self._stepping = False
+            return generator.stand_targets()
+        self._stepping = True
+        if between_steps:
+            command = self._balanced(command, context)
+        return generator.next_targets(command)
+
+    def _feet_at_neutral(self) -> bool:
+        left, right = self.generator.feet
+        spread = self.params.step.foot_spread
+        return (
+            abs(left.x) < 0.005
+            and abs(right.x) < 0.005
+            and abs(left.y - spread) < 0.005
+            and abs(right.y + spread) < 0.005
+            and abs(left.yaw) < 0.02
+            and abs(right.yaw) < 0.02
+        )
+
+    def _balanced(self, command: StepCommand, context: SkillContext) -> StepCommand:
+        """The next step's length corrected by the torso's pitch (stepping into a fall)."""
+        robot = context.world.robot
+        p = self.params
+        rate = float(robot.gyro_deg_s[0])  # + = pitching forward (x is the robot's right)
+        shift = p.landing_pitch_rate_gain * rate + p.landing_pitch_gain * robot.pitch_deg
+        return replace(command, forward=command.forward + shift).clipped(p.step)
+
+    def _leg_angles(self, targets: FootTargets, context: SkillContext) -> dict[str, float]:
+        p = self.params
+        pitch = -p.step.lean  # soles flat on the ground under a leaning torso
+        left = self.ik.solve_sole("left", targets.left, 0.0, pitch, targets.left_yaw)
+        right = self.ik.solve_sole("right", targets.right, 0.0, pitch, targets.right_yaw)
+        angles = {**left.angles_deg, **right.angles_deg}
+        self._imu_corrections(angles, targets, context)
+        return angles
+
+    def _imu_corrections(
+        self, angles: dict[str, float], targets: FootTargets, context: SkillContext
+    ) -> None:
+        """Ankle and hip corrections against the torso's tilt, on the support leg."""
+        p = self.params
+        robot = context.world.robot
+        support = "r" if targets.left_active else "l"
+        if not self._stepping:
+            supports = ("l", "r")
+        else:
+            supports = (support,)
+        pitch_fix = p.ankle_pitch_gain * robot.pitch_deg + p.ankle_pitch_rate_gain * float(
+            robot.gyro_deg_s[0]
+        )
+        roll = robot.roll_deg  # + = leaning to the right
+        for side in supports:
+            angles[f"{side}lj5"] = angles[f"{side}lj5"] - pitch_fix
+            angles[f"{side}lj6"] = angles[f"{side}lj6"] + p.ankle_roll_gain * roll
+            angles[f"{side}lj2"] = angles[f"{side}lj2"] + p.hip_roll_gain * roll
+
+    def _add_arms(self, angles: dict[str, float]) -> None:
+        p = self.params
+        angles.update(
+            raj1=p.arm_pitch_deg,
+            laj1=p.arm_pitch_deg,
+            raj2=p.arm_out_deg,
+            laj2=-p.arm_out_deg,
+            raj3=0.0,
+            laj3=0.0,
+            raj4=10.0,
+            laj4=-10.0,
+        )
+        if self._has_toes:
+            angles.update(rlj7=p.toe_deg, llj7=p.toe_deg)
+
+    def _send(self, context: SkillContext, angles: dict[str, float]) -> None:
+        """Joint speeds that bring each joint to its target at the cycle the speed acts in."""
+        current = context.world.robot.joints_deg
+        if self._start_pose is None:
+            self._start_pose = {n: current.get(n, 0.0) for n in angles}
+        blend = min(1.0, (self._cycles + 1) / max(1, self.params.blend_cycles))
+        if blend < 1.0:
+            angles = {
+                n: self._start_pose[n] + (a - self._start_pose[n]) * blend
+                for n, a in angles.items()
+            }
+        previous = self._previous_target or angles
+        gain = self.params.error_gain
+        speeds = {}
+        for name, target in angles.items():
+            low, high = context.world.robot.joint_limits_deg(name)
+            target = min(max(target, low), high)
+            predicted = current.get(name, 0.0) + math.degrees(
+                self._last_speed.get(name, 0.0) * CYCLE_SECONDS
+            )
+            before = min(max(previous.get(name, target), low), high)
+            feedforward = target - before
+            error = before - predicted
+            speed = math.radians(feedforward + gain * error) / CYCLE_SECONDS
+            limit = self._max_speed[name]
+            speeds[name] = max(-limit, min(limit, speed))
+        context.commands.set_speeds(speeds)
+        self._last_speed = speeds
+        self._previous_target = angles
+
+    def _report_odometry(self, context: SkillContext) -> None:
+        if not self._stepping:
+            return
+        command = self.generator.command
+        share = 1.0 / self.params.step.step_cycles
+        sx, sy, st = self.params.odometry_scale
+        localizer = getattr(context.world, "localizer", None)
+        if localizer is not None:
+            localizer.add_odometry(
+                command.forward * share * sx,
+                command.left * share * sy,
+                math.degrees(command.turn * share * st),
+            )
+
+
+class _WalkBase(Skill):
+    """Shared state of the walking skills: one engine, made for the robot type on first use."""
+
+    def __init__(self) -> None:
+        self._engine: WalkEngine | None = None
+
+    def reset(self) -> None:
+        if self._engine is not None:
+            self._engine.reset()
+
+    def engine(self, context: SkillContext) -> WalkEngine:
+        robot_type = context.world.robot.robot_type
+        if self._engine is None or self._engine.robot_type != robot_type:
+            self._engine = WalkEngine(robot_type)
+        return self._engine
+
+    @property
+    def phase(self) -> tuple[int, bool]:
+        """(t, left_active): the cycle inside the current step (0..7) and whether the left
+        leg swings; (-1, False) before the first step."""
+        if self._engine is None:
+            return (-1, False)
+        return self._engine.phase
+
+
+class WalkVelocitySkill(_WalkBase):
+    """Walk at (vx, vy) m/s and vturn_deg deg/s in the robot frame (x forward, y left); never
+    finishes (returns True only while standing still on a zero command)."""
+
+    name = "walk_velocity"
+
+    def validate(self, vx: float, vy: float, vturn_deg: float) -> None:
+        if not all(math.isfinite(v) for v in (vx, vy, vturn_deg)):
+            raise ValueError("velocities must be finite")
+
+    def step(self, context: SkillContext, vx: float, vy: float, vturn_deg: float) -> bool:
+        engine = self.engine(context)
+        engine.step(context, vx, vy, vturn_deg)
+        return engine.is_stopped and vx == 0.0 and vy == 0.0 and vturn_deg == 0.0
+
+
+#: Walking to a target: arrive within this distance (m) and heading error (deg) ...
+ARRIVE_DISTANCE = 0.04
+ARRIVE_HEADING_DEG = 8.0
+#: ... and count as left again beyond these (hysteresis)
+LEAVE_DISTANCE = 0.1
+LEAVE_HEADING_DEG = 20.0
+#: Beyond this distance a heading of None means facing the direction of travel.
+FACE_TRAVEL_DISTANCE = 0.4
+
+
+@dataclass(frozen=True)
+class GoToGains:
+    """How ``walk`` turns the remaining way into a velocity."""
+
+    #: m/s per m of remaining distance, and the cap near the target
+    position_gain: float = 1.5
+    #: deg/s per degree of heading error
+    heading_gain: float = 3.0
+    max_turn_deg: float = 120.0
+
+
+class WalkSkill(_WalkBase):
+    """Walk to (x, y) in the team frame, facing heading_deg at the end (None: the direction of
+    travel); finished once within 0.1 m (aiming for 0.04) and standing still."""
+
+    name = "walk"
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.gains = GoToGains()
+        self._arrived = False
+
+    def reset(self) -> None:
+        super().reset()
+        self._arrived = False
+
+    def validate(self, x: float, y: float, heading_deg: float | None = None) -> None:
+        values = (x, y) if heading_deg is None else (x, y, heading_deg)
+        if not all(math.isfinite(v) for v in values):
+            raise ValueError("target coordinates must be finite")
+
+    def step(self, context: SkillContext, x: float, y: float, heading_deg: float | None) -> bool:
+        engine = self.engine(context)
+        pose = context.world.pose
+        if pose is None:  # lost: stand (step out the current step) until localised
+            engine.step(context, 0.0, 0.0, 0.0)
+            return False
+        vx, vy, vturn = self._velocity(engine, pose.x, pose.y, pose.heading_deg, x, y, heading_deg)
+        engine.step(context, vx, vy, vturn)
+        return self._arrived and engine.is_stopped
+
+    def _velocity(
+        self,
+        engine: WalkEngine,
+        px: float,
+        py: float,
+        ph: float,
+        x: float,
+        y: float,
+        heading: float | None,
+    ) -> tuple[float, float, float]:
+        dx, dy = x - px, y - py
+        distance = math.hypot(dx, dy)
+        h = math.radians(ph)
+        forward = math.cos(h) * dx + math.sin(h) * dy
+        left = -math.sin(h) * dx + math.cos(h) * dy
+        travel = math.degrees(math.atan2(dy, dx))
+        if heading is None:
+            goal_heading = travel if distance > FACE_TRAVEL_DISTANCE else ph
+        else:
+            goal_heading = travel if distance > 1.5 else heading
+        heading_error = _wrap_deg(goal_heading - ph)
+        final_error = 0.0 if heading is None else _wrap_deg(heading - ph)
+        if self._arrived:
+            if distance > LEAVE_DISTANCE or abs(final_error) > LEAVE_HEADING_DEG:
+                self._arrived = False
+        elif distance < ARRIVE_DISTANCE and abs(final_error) < ARRIVE_HEADING_DEG:
+            self._arrived = True
+        if self._arrived:
+            return 0.0, 0.0, 0.0
+        g = self.gains
+        step = engine.params.step
+        duration = step.step_cycles * CYCLE_SECONDS
+        max_forward = step.max_forward / duration
+        max_side = step.max_side / duration
+        speed = min(g.position_gain * distance, max_forward)
+        vx = speed * forward / max(distance, 1e-9)
+        vy = speed * left / max(distance, 1e-9)
+        # turning first when the target is behind: slow down while the heading is far off
+        slow = max(0.0, math.cos(math.radians(min(abs(heading_error), 90.0))))
+        if distance > FACE_TRAVEL_DISTANCE:
+            vx *= slow
+        vy = max(-max_side, min(max_side, vy))
+        vturn = max(-g.max_turn_deg, min(g.max_turn_deg, g.heading_gain * heading_error))
+        return vx, vy, vturn
+
+
+def _wrap_deg(angle: float) -> float:
+    return (angle + 180.0) % 360.0 - 180.0

@@ -1,0 +1,200 @@
+"""Locomotion figures of the walk on every robot type, in the in-process simulator.
+
+The agent side sees perception bytes only (parsed into a :class:`~world.world_model.WorldModel`)
+and answers with effector bytes, as over TCP; the figures are measured on the simulator's
+ground truth (torso position and heading). Per type it prints:
+
+* ``walk_forward_mps[typeN]``: torso speed over 3 s (2 s with ``--quick``) of full-speed
+  forward walking, after 1 s to accelerate;
+* ``walk_side_mps[typeN]``: the same walking left;
+* ``walk_turn_dps[typeN]``: turning on the spot, deg/s;
+* ``falls_60s[typeN]``: falls in 60 s (15 s with ``--quick``) of ``walk`` to random targets
+  (a fallen robot is put back on its feet by the trainer and counted);
+* ``walk_stop_error_m[typeN]``: mean distance from the target where ``walk`` reported
+  arrival (ground truth), over the reached targets.
+
+Run: ``.venv/bin/python benchmarks/locomotion.py [--quick] [--types 0 1 2 3 4] [--seed 0]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+import behaviors  # noqa: F401  (registers the built-in skills)
+from behaviors.manager import Behavior
+from sim.monitor import parse_trainer_commands
+from sim.session import Session, SessionConfig
+from world.effectors import EffectorMessage, write_effectors
+from world.nao_model import ROBOT_TYPES
+from world.perception import parse_perception
+from world.world_model import WorldModel
+
+SCENE = "rsg/agent/nao/nao_hetero.rsg"
+
+
+class WalkDriver:
+    """One agent in-process: perception bytes -> WorldModel -> skills -> effector bytes."""
+
+    def __init__(self, session: Session, robot_type: int, beam: tuple[float, float, float]):
+        self.session = session
+        self.robot_type = robot_type
+        self.agent = session.add_agent()
+        session.handle_message(self.agent, f"(scene {SCENE} {robot_type})".encode())
+        session.step()
+        session.handle_message(self.agent, b"(init (unum 1)(teamname Walkers))(syn)")
+        session.step()
+        x, y, deg = beam
+        session.handle_message(self.agent, f"(beam {x:.3f} {y:.3f} {deg:.1f})(syn)".encode())
+        session.step()
+        session.step()
+        self.world = WorldModel(robot_type, "Walkers")
+        self.behavior = Behavior(self.world, robot_type)
+        self.trainer("(playMode PlayOn)")
+        self.stand_up()
+
+    def stand_up(self) -> None:
+        """Rise slowly from the beam's (or the trainer's) zero pose into the stand pose."""
+        while not self.run("keyframe", "stand_up_slowly"):
+            pass
+        for _ in range(25):
+            self.run("pose", "stand")
+
+    @property
+    def robot(self):
+        return self.session.agents[self.agent].robot
+
+    def trainer(self, text: str) -> None:
+        commands, errors = parse_trainer_commands(text.encode())
+        if errors:
+            raise ValueError(errors)
+        self.session.trainer_command(commands)
+
+    def run(self, name: str, *args: object) -> bool:
+        """One cycle of skill ``name``: perceive, execute, send, step the simulator."""
+        self.world.update(parse_perception(self.session.perception(self.agent)))
+        self.behavior.begin_cycle()
+        finished = self.behavior.execute(name, *args)
+        message = EffectorMessage(joint_speeds=self.behavior.effector_speeds(), syn=True)
+        self.session.handle_message(self.agent, write_effectors(message))
+        self.session.step()
+        return finished
+
+    def ground_pose(self) -> tuple[float, float, float]:
+        """Ground truth: torso x, y (world) and heading (deg)."""
+        x, y, _ = self.robot.torso_position()
+        return x, y, self.robot.torso_yaw_deg()
+
+    def fallen(self) -> bool:
+        return self.robot.has_fallen()
+
+    def put_back(self, x: float, y: float) -> None:
+        """The trainer stands the robot up again (after a fall)."""
+        self.trainer(f"(agent (team Left) (unum 1) (move {x:.2f} {y:.2f} 0.4 0))")
+        self.session.step()
+        self.session.step()
+        self.stand_up()
+
+
+def new_driver(robot_type: int, seed: int, beam=(-8.0, 0.0, 0.0)) -> WalkDriver:
+    session = Session(SessionConfig(seed=seed, beam_noise=False))
+    return WalkDriver(session, robot_type, beam)
+
+
+@dataclass(frozen=True)
+class VelocityResult:
+    speed: float
+    fell: bool
+
+
+def measure_velocity(
+    robot_type: int, command: tuple[float, float, float], seconds: float, seed: int = 0
+) -> tuple[float, float, float, bool]:
+    """Walk with ``walk_velocity(*command)``; (forward m/s, left m/s, turn deg/s, fell) of the
+    torso over ``seconds`` after one second of acceleration, in the robot's start frame."""
+    driver = new_driver(robot_type, seed)
+    try:
+        for _ in range(50):
+            driver.run("walk_velocity", *command)
+            if driver.fallen():
+                return 0.0, 0.0, 0.0, True
+        x0, y0, h0 = driver.ground_pose()
+        turned = 0.0
+        previous = h0
+        for _ in range(round(seconds / 0.02)):
+            driver.run("walk_velocity", *command)
+            _, _, h = driver.ground_pose()
+            turned += (h - previous + 180.0) % 360.0 - 180.0
+            previous = h
+            if driver.fallen():
+                return 0.0, 0.0, 0.0, True
+        x1, y1, _ = driver.ground_pose()
+        c, s = math.cos(math.radians(h0)), math.sin(math.radians(h0))
+        dx, dy = x1 - x0, y1 - y0
+        return (c * dx + s * dy) / seconds, (-s * dx + c * dy) / seconds, turned / seconds, False
+    finally:
+        driver.session.close()
+
+
+def random_targets(robot_type: int, seconds: float, seed: int) -> tuple[int, list[float], int]:
+    """``walk`` to random targets for ``seconds``: (falls, stop errors, targets reached)."""
+    rng = np.random.default_rng(seed)
+    driver = new_driver(robot_type, seed, beam=(-6.0, 0.0, 0.0))
+    falls = 0
+    errors: list[float] = []
+    try:
+        target = _random_target(rng)
+        cycles = round(seconds / 0.02)
+        for _ in range(cycles):
+            done = driver.run("walk", *target)
+            if driver.fallen():
+                falls += 1
+                x, y, _ = driver.ground_pose()
+                driver.put_back(x, y)
+                continue
+            if done:
+                x, y, _ = driver.ground_pose()
+                errors.append(math.hypot(x - target[0], y - target[1]))
+                target = _random_target(rng)
+        return falls, errors, len(errors)
+    finally:
+        driver.session.close()
+
+
+def _random_target(rng: np.random.Generator) -> tuple[float, float, float | None]:
+    heading = None if rng.random() < 0.5 else float(rng.uniform(-180, 180))
+    return float(rng.uniform(-10, -2)), float(rng.uniform(-4, 4)), heading
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--quick", action="store_true", help="shorter runs (under a minute)")
+    parser.add_argument("--types", type=int, nargs="*", default=list(ROBOT_TYPES))
+    parser.add_argument("--seed", type=int, default=0)
+    args = parser.parse_args()
+    measure_s = 2.0 if args.quick else 3.0
+    random_s = 15.0 if args.quick else 60.0
+    for robot_type in args.types:
+        tag = f"[type{robot_type}]"
+        fwd, _, _, fell_f = measure_velocity(robot_type, (1.0, 0.0, 0.0), measure_s, args.seed)
+        _, side, _, fell_s = measure_velocity(robot_type, (0.0, 0.4, 0.0), measure_s, args.seed)
+        _, _, turn, fell_t = measure_velocity(robot_type, (0.0, 0.0, 120.0), measure_s, args.seed)
+        falls, errors, reached = random_targets(robot_type, random_s, args.seed + robot_type)
+        print(f"walk_forward_mps{tag}: {fwd:.3f}{' (fell)' if fell_f else ''}")
+        print(f"walk_side_mps{tag}: {side:.3f}{' (fell)' if fell_s else ''}")
+        print(f"walk_turn_dps{tag}: {turn:.1f}{' (fell)' if fell_t else ''}")
+        print(f"falls_{round(random_s)}s{tag}: {falls}")
+        error = float(np.mean(errors)) if errors else float("nan")
+        print(f"walk_stop_error_m{tag}: {error:.3f} ({reached} targets reached)")
+        sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
