@@ -70,6 +70,11 @@ class WalkParameters:
     landing_pitch_rate_gain: float = 0.0
     #: landing shift (m) per degree of pitch
     landing_pitch_gain: float = 0.0
+    #: sideways landing shift (m, to the right) per deg/s of roll rate and per degree of roll
+    landing_roll_rate_gain: float = 0.0
+    landing_roll_gain: float = 0.0
+    #: turn correction (deg/s) per degree of heading drift from the commanded turn (gyro)
+    heading_hold_gain: float = 0.0
     #: how much of the planned torso motion really happens (measured)
     odometry_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
     #: arm pose while walking (degrees), right side; the left mirrors it
@@ -134,6 +139,7 @@ class WalkEngine:
         self._start_pose: dict[str, float] | None = None
         self._cycles = 0
         self._stepping = False
+        self._heading_drift = 0.0
 
     # ------------------------------------------------------------------ state
     @property
@@ -150,6 +156,7 @@ class WalkEngine:
     def step(self, context: SkillContext, vx: float, vy: float, vturn_deg: float) -> None:
         """One cycle walking at (vx, vy) m/s and vturn_deg deg/s in the robot frame."""
         self._smooth_velocity(vx, vy, math.radians(vturn_deg))
+        self._track_heading(context)
         targets = self._next_foot_targets(context)
         angles = self._leg_angles(targets, context)
         self._add_arms(angles)
@@ -166,9 +173,17 @@ class WalkEngine:
         w += min(max(vturn - w, -at), at)
         self.velocity = (x, y, w)
 
+    def _track_heading(self, context: SkillContext) -> None:
+        """Integrate how far the gyro's turn has drifted from the commanded turn (feet slip
+        and the swing leg twists the body); the step's turn works against the drift."""
+        turn = float(context.world.robot.gyro_deg_s @ context.world.robot.up)
+        drift = self._heading_drift + (turn - math.degrees(self.velocity[2])) * CYCLE_SECONDS
+        self._heading_drift = max(-30.0, min(30.0, drift)) if self._stepping else 0.0
+
     def _step_command(self) -> StepCommand:
         duration = self.params.step.step_cycles * CYCLE_SECONDS
         x, y, w = self.velocity
+        w -= math.radians(self.params.heading_hold_gain * self._heading_drift)
         return StepCommand(x * duration, y * duration, w * duration).clipped(self.params.step)
 
     def _next_foot_targets(self, context: SkillContext) -> FootTargets:
@@ -203,9 +218,13 @@ class WalkEngine:
         """The next step's length corrected by the torso's pitch (stepping into a fall)."""
         robot = context.world.robot
         p = self.params
-        rate = float(robot.gyro_deg_s[0])  # + = pitching forward (x is the robot's right)
+        rate = -float(robot.gyro_deg_s[0])  # + = pitching forward (gyro x: about the right)
         shift = p.landing_pitch_rate_gain * rate + p.landing_pitch_gain * robot.pitch_deg
-        return replace(command, forward=command.forward + shift).clipped(p.step)
+        roll_rate = float(robot.gyro_deg_s[1])  # + = rolling to the right
+        side = p.landing_roll_rate_gain * roll_rate + p.landing_roll_gain * robot.roll_deg
+        return replace(command, forward=command.forward + shift, left=command.left - side).clipped(
+            p.step
+        )
 
     def _leg_angles(self, targets: FootTargets, context: SkillContext) -> dict[str, float]:
         p = self.params
@@ -223,13 +242,9 @@ class WalkEngine:
         p = self.params
         robot = context.world.robot
         support = "r" if targets.left_active else "l"
-        if not self._stepping:
-            supports = ("l", "r")
-        else:
-            supports = (support,)
-        pitch_fix = p.ankle_pitch_gain * robot.pitch_deg + p.ankle_pitch_rate_gain * float(
-            robot.gyro_deg_s[0]
-        )
+        supports = (support,) if self._stepping else ("l", "r")
+        pitch_rate = -float(robot.gyro_deg_s[0])  # + = pitching forward
+        pitch_fix = p.ankle_pitch_gain * robot.pitch_deg + p.ankle_pitch_rate_gain * pitch_rate
         roll = robot.roll_deg  # + = leaning to the right
         for side in supports:
             angles[f"{side}lj5"] = angles[f"{side}lj5"] - pitch_fix
