@@ -8,8 +8,8 @@ ground truth (torso position and heading). Per type it prints:
   forward walking, after 1 s to accelerate;
 * ``walk_side_mps[typeN]``: the same walking left;
 * ``walk_turn_dps[typeN]``: turning on the spot, deg/s;
-* ``falls_60s[typeN]``: falls in 60 s (15 s with ``--quick``) of ``walk`` to random targets
-  (a fallen robot is put back on its feet by the trainer and counted);
+* ``falls_60s[typeN]``: falls in 60 s of ``walk`` to random targets (``falls_10s`` over
+  10 s with ``--quick``; a fallen robot is put back on its feet by the trainer and counted);
 * ``walk_stop_error_m[typeN]``: mean distance from the target where ``walk`` reported
   arrival (ground truth), over the reached targets.
 
@@ -180,7 +180,7 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     measure_s = 2.0 if args.quick else 3.0
-    random_s = 15.0 if args.quick else 60.0
+    random_s = 10.0 if args.quick else 60.0
     for robot_type in args.types:
         tag = f"[type{robot_type}]"
         fwd, _, _, fell_f = measure_velocity(robot_type, (1.0, 0.0, 0.0), measure_s, args.seed)
