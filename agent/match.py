@@ -51,9 +51,16 @@ def run_match(
     real_time: bool = False,
     on_event: Callable[[str], None] = print,
     on_cycle: Callable[[object], None] | None = None,
+    team_processes: bool = False,
 ) -> MatchResult:
     """Play ``duration_s`` seconds of game time; events go to ``on_event`` as they happen and
-    ``on_cycle(session)`` runs after every played cycle (renderers, recorders)."""
+    ``on_cycle(session)`` runs after every cycle (renderers, recorders).
+
+    ``team_processes`` runs each team in its own process, talking TCP to the server (the
+    server and the agents then use separate cores); otherwise all agents answer inside the
+    server's cycle in this process. Either way the left team joins first, one agent at a time,
+    so the game is reproducible for a seed.
+    """
     from sim.server import SoccerServer
     from sim.session import Session, SessionConfig
 
@@ -62,70 +69,95 @@ def run_match(
     if left.name == right.name:
         raise ValueError(f"the two teams need different names, both are {left.name!r}")
     session = Session(SessionConfig(seed=seed))
-    server = SoccerServer(session, "127.0.0.1", 0, monitor_port or 0, sync=True)
+    server = SoccerServer(session, "127.0.0.1", 0, monitor_port or 0, sync=not real_time)
     if monitor_port is not None:
         on_event(f"monitor port {server.monitor_port} (RoboViz can connect)")
     start = time.perf_counter()
+    processes = []
+    agents: list[Agent] = []
     try:
-        agents = _join_teams(server, [*left.agents(), *right.agents()])
-        _play(server, duration_s, real_time, on_event, on_cycle)
+        for team in (left, right):
+            if team_processes:
+                processes.append(_start_team_process(team, server.port))
+            else:
+                agents += _join_local(server, team.agents())
+            server.serve_forever(
+                until=lambda team=team: _joined(session, team) == len(team.robot_types)
+            )
+        _play(server, duration_s, on_event, on_cycle)
     finally:
         server.close()
         session.close()
-    referee_state = session.referee
+        for process in processes:
+            process.join(timeout=10)
+            if process.is_alive():
+                process.terminate()
     return MatchResult(
         left.name,
         right.name,
-        referee_state.score_left,
-        referee_state.score_right,
-        referee_state.game_time,
+        session.referee.score_left,
+        session.referee.score_right,
+        session.referee.game_time,
         session.cycle,
         time.perf_counter() - start,
         tuple(agents),
     )
 
 
-def _join_teams(server, agents: list[Agent]) -> list[Agent]:
-    """Agents join one at a time: the next one connects once the last knows its number."""
-    joined: list[Agent] = []
+def _joined(session, team: TeamConfig) -> int:
+    """How many of the team's players the server has given a side and number."""
+    return sum(1 for s in session.agents.values() if s.team_name == team.name and s.unum)
+
+
+def _join_local(server, agents: list[Agent]) -> list[Agent]:
+    """In-process agents join one at a time: the next once the last knows its number."""
     for agent in agents:
         server.add_local_agent(agent)
-        joined.append(agent)
-        for _ in range(50):
-            server.run_cycle()
-            server.poll(0.0)
-            if agent.world.unum is not None:
-                break
-        else:
+        server.serve_forever(
+            max_cycles=server.session.cycle + 50, until=lambda a=agent: a.world.unum is not None
+        )
+        if agent.world.unum is None:
             raise RuntimeError(f"agent {agent.config} got no side and number from the server")
-    return joined
+    return agents
+
+
+def _start_team_process(team: TeamConfig, port: int):
+    import multiprocessing
+
+    process = multiprocessing.get_context("spawn").Process(
+        target=_team_process_main, args=(team, port), daemon=True
+    )
+    process.start()
+    return process
+
+
+def _team_process_main(team: TeamConfig, port: int) -> None:
+    from agent.team import run_team_tcp
+
+    logging.basicConfig(level=logging.WARNING)
+    run_team_tcp(team, "127.0.0.1", port)
 
 
 def _play(
-    server,
-    duration_s: float,
-    real_time: bool,
-    on_event: Callable[[str], None],
-    on_cycle: Callable[[object], None] | None,
+    server, duration_s: float, on_event: Callable[[str], None], on_cycle: Callable | None
 ) -> None:
     """Run cycles until ``duration_s`` of game time; kick off whenever the game waits for it
     (the start, and the second half), after the players had ``SETTLE_S`` to beam in."""
     session = server.session
     referee = session.referee
-    printed = 0
-    waiting = 0
-    next_cycle = time.monotonic()
-    while referee.game_time < duration_s and referee.play_mode != "GameOver":
-        server.run_cycle()
-        server.poll(0.0)
-        waiting = waiting + 1 if referee.play_mode == "BeforeKickOff" else 0
-        if waiting * 0.02 >= SETTLE_S:
-            referee.kick_off(None)
-        for event in session.events[printed:]:
+    state = {"printed": 0, "waiting": 0}
+
+    def after_cycle() -> None:
+        for event in session.events[state["printed"] :]:
             on_event(f"[{referee.game_time:7.2f}] {event.text}")
-        printed = len(session.events)
+        state["printed"] = len(session.events)
+        state["waiting"] = state["waiting"] + 1 if referee.play_mode == "BeforeKickOff" else 0
+        if state["waiting"] * 0.02 >= SETTLE_S:
+            referee.kick_off(None)
         if on_cycle is not None:
             on_cycle(session)
-        if real_time:
-            next_cycle += 0.02
-            time.sleep(max(0.0, next_cycle - time.monotonic()))
+
+    server.serve_forever(
+        until=lambda: referee.game_time >= duration_s or referee.play_mode == "GameOver",
+        on_cycle=after_cycle,
+    )

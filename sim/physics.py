@@ -31,9 +31,11 @@ import pybullet
 
 CYCLE_SECONDS = 0.02
 GRAVITY = -9.81
-#: Sequential-impulse iterations per step (Bullet's default is 50; the robots' drift-correcting
-#: motors, see ``sim.robot``, stand as still with 10).
-SOLVER_ITERATIONS = 10
+#: Sequential-impulse iterations per step (Bullet's default is 50). With 10, loaded joints give
+#: under the robot's weight (type 4's toes sag 30-50 deg) and an agent holding a crouch through
+#: its delayed speed loop rocks 5-10 deg at about 1 Hz; from 20 on the robot holds still (30
+#: for type 4's toes). 30 costs about 20 % of the 22-robot cycle rate (benchmarks/physics.py).
+SOLVER_ITERATIONS = 30
 #: Bullet's collision filter of dynamic bodies (btBroadphaseProxy::DefaultFilter, AllFilter)
 DYNAMIC_FILTER_GROUP = 1
 ALL_FILTER_MASK = -1

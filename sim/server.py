@@ -21,6 +21,7 @@ import logging
 import selectors
 import socket
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Protocol
 
@@ -87,13 +88,27 @@ class SoccerServer:
     def monitor_port(self) -> int:
         return self.monitor_listener.getsockname()[1]
 
-    def serve_forever(self, max_cycles: int | None = None) -> None:
-        """Run until :meth:`stop` is called (from a callback or a signal) or ``max_cycles``."""
+    def serve_forever(
+        self,
+        max_cycles: int | None = None,
+        until: Callable[[], bool] | None = None,
+        on_cycle: Callable[[], None] | None = None,
+    ) -> None:
+        """Run until :meth:`stop` is called (from a callback or a signal), the session reaches
+        ``max_cycles``, or ``until()`` is true; ``on_cycle()`` runs after every cycle.
+
+        In sync mode the server waits for every TCP agent's ``(syn)``; in-process agents answer
+        inside the cycle, so with only those it runs as fast as it can.
+        """
         self._running = True
         next_cycle = time.monotonic()
         waiting_since = time.monotonic()
-        while self._running and (max_cycles is None or self.session.cycle < max_cycles):
-            if self.sync and self._agents_with_robots():
+        while (
+            self._running
+            and (max_cycles is None or self.session.cycle < max_cycles)
+            and not (until is not None and until())
+        ):
+            if self.sync and (self._agents_with_robots() or self.local_agents):
                 self._poll(0.05 if not self._all_synced() else 0.0)
                 if not self._all_synced():
                     if time.monotonic() - waiting_since > SYNC_TIMEOUT_S:
@@ -108,6 +123,8 @@ class SoccerServer:
                 if time.monotonic() - next_cycle > 1.0:  # fell far behind: do not try to catch up
                     next_cycle = time.monotonic()
             self.run_cycle()
+            if on_cycle is not None:
+                on_cycle()
 
     def stop(self) -> None:
         self._running = False

@@ -113,7 +113,6 @@ def test_walk_velocity_moves_forward_without_falling_type0():
     assert phases[:8] == [(t, True) for t in range(8)]
 
 
-@pytest.mark.xfail(strict=True, reason="the hand-made gait falls above about 0.3 m/s")
 def test_walk_forward_covers_2_m_in_5_s_type0():
     distance, fell, _ = _forward_run(0, 1.0, 5.0)
     assert not fell and distance >= 2.0
