@@ -103,6 +103,11 @@ def _build_parser() -> argparse.ArgumentParser:
     match.add_argument("--right", default="NaoRight", help="right team name")
     match.add_argument("--monitor-port", type=int, help="open a monitor port (e.g. 3200)")
     match.add_argument("--real-time", action="store_true", help="no faster than 50 cycles/s")
+    match.add_argument(
+        "--team-processes",
+        action="store_true",
+        help="run each team in its own process over TCP (uses a second core)",
+    )
     match.set_defaults(run=_run_match)
 
     render = commands.add_parser(
@@ -208,10 +213,11 @@ def _run_match(args: argparse.Namespace) -> int:
         monitor_port=args.monitor_port,
         real_time=args.real_time,
         on_event=lambda text: print(text, flush=True),
+        team_processes=args.team_processes,
     )
     print(
         f"played {result.game_time:.1f} s of game time in {result.wall_seconds:.1f} s "
-        f"({result.realtime_factor:.2f}x real time)"
+        f"({result.realtime_factor:.2f}x real time once all players had joined)"
     )
     print(result.score_line())
     return 0

@@ -33,10 +33,16 @@ class MatchResult:
     cycles: int
     wall_seconds: float
     agents: tuple[Agent, ...]
+    #: cycles and wall seconds of play, after every agent had joined
+    play_cycles: int = 0
+    play_wall_seconds: float = 0.0
 
     @property
     def realtime_factor(self) -> float:
-        return self.cycles * 0.02 / self.wall_seconds if self.wall_seconds else 0.0
+        """Simulated seconds per wall second while playing (joining excluded)."""
+        if not self.play_wall_seconds:
+            return 0.0
+        return self.play_cycles * 0.02 / self.play_wall_seconds
 
     def score_line(self) -> str:
         return f"score: {self.left} {self.score_left} - {self.score_right} {self.right}"
@@ -84,7 +90,9 @@ def run_match(
             server.serve_forever(
                 until=lambda team=team: _joined(session, team) == len(team.robot_types)
             )
+        play_start, first_cycle = time.perf_counter(), session.cycle
         _play(server, duration_s, on_event, on_cycle)
+        play_wall, play_cycles = time.perf_counter() - play_start, session.cycle - first_cycle
     finally:
         server.close()
         session.close()
@@ -101,6 +109,8 @@ def run_match(
         session.cycle,
         time.perf_counter() - start,
         tuple(agents),
+        play_cycles,
+        play_wall,
     )
 
 

@@ -6,7 +6,9 @@
 - ``think_ms_median`` / ``think_ms_p99``: one agent cycle (parse the perception, update the
   world model, strategy and behaviours, write the effectors), over all 22 agents of a match;
 - ``match_realtime_factor``: game seconds per wall second of an 11 vs 11 match in one process
-  (server, physics and all 22 agents) on this machine.
+  (server, physics and all 22 agents) on this machine, joining excluded;
+- ``match_realtime_factor[team_processes]``: the same with each team in its own process over
+  TCP, so the agents think on the second core while the server steps physics.
 """
 
 from __future__ import annotations
@@ -27,11 +29,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
-    result = run_match(4.0 if args.quick else 20.0, seed=0, on_event=lambda _: None)
+    duration = 4.0 if args.quick else 20.0
+    result = run_match(duration, seed=0, on_event=lambda _: None)
     times = np.concatenate([np.asarray(a.think_times) for a in result.agents]) * 1000
     print(f"think_ms_median: {np.median(times):.3f}")
     print(f"think_ms_p99: {np.percentile(times, 99):.3f}")
     print(f"match_realtime_factor: {result.realtime_factor:.2f}")
+    split = run_match(duration, seed=0, on_event=lambda _: None, team_processes=True)
+    print(f"match_realtime_factor[team_processes]: {split.realtime_factor:.2f}")
     print(f"cpu_count: {os.cpu_count()}")
 
 
