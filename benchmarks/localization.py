@@ -14,6 +14,9 @@ Run: ``.venv/bin/python benchmarks/localization.py [--cycles N]``. Prints ``name
 * ``world_update_with_fk_us_median`` - the same when a behaviour also reads this cycle's
   ``body_transforms`` (the kinematics is computed on demand);
 * ``parse_us_median`` - ``parse_perception`` of the same messages, for scale;
+* ``loc_walking_error_m_median`` / ``loc_walking_error_deg_median`` / ``loc_walking_falls`` -
+  pose error while a type-0 agent walks with its own walk skill (odometry from the walk, images
+  every third cycle), every cycle after the first fix while it is up;
 * ``ball_error_m_median`` / ``ball_velocity_error_mps_median`` - the ball filter against the
   true ball while balls roll past a standing robot at 1-4 m/s (cycles where the ball was seen
   within the last 0.1 s);
@@ -175,11 +178,64 @@ def update_costs(messages: list[bytes]) -> dict[str, float]:
     }
 
 
+class _WalkAround:
+    """A strategy for one agent: beam in, then walk with a slowly changing command."""
+
+    def __init__(self, speed: float) -> None:
+        self.speed = speed
+        self.cycle = 0
+
+    def decide(self, world, behavior):
+        from agent.strategy import Decision
+
+        self.cycle += 1
+        if self.cycle == 2:
+            return Decision(beam=(-6.0, -2.0, 0.0))
+        if self.cycle < 60 or world.robot.is_fallen:
+            behavior.execute("pose", "stand")
+            return Decision()
+        turn = 20.0 * math.sin(self.cycle / 150.0)
+        behavior.execute("walk_velocity", self.speed, 0.0, turn)
+        return Decision()
+
+
+def walking_robot(seconds: float, seed: int, speed: float = 0.3) -> dict[str, list[float]]:
+    """Pose error of a type-0 agent walking (its own walk, its own odometry), every cycle
+    after the first fix while it stands; and how often it fell."""
+    from agent.agent import Agent, AgentConfig
+    from sim.server import SoccerServer
+
+    session = Session(SessionConfig(seed=seed))
+    server = SoccerServer(session, "127.0.0.1", 0, 0, sync=True)
+    agent = Agent(AgentConfig("Walker", 1, 0), _WalkAround(speed))
+    agent_id = server.add_local_agent(agent)
+    errors: dict[str, list[float]] = {"m": [], "deg": [], "falls": [0]}
+    was_fallen = False
+    try:
+        for _ in range(int(seconds / 0.02)):
+            server.run_cycle()
+            robot = session.agents[agent_id].robot
+            fallen = robot.has_fallen()
+            errors["falls"][0] += fallen and not was_fallen
+            was_fallen = fallen
+            pose = agent.world.pose
+            if pose is None or fallen or agent.strategy.cycle < 60:
+                continue
+            x, y, _ = robot.torso_position()
+            errors["m"].append(math.hypot(pose.x - x, pose.y - y))
+            errors["deg"].append(abs(wrap_deg(pose.heading_deg - robot.torso_yaw_deg())))
+    finally:
+        server.close()
+        session.close()
+    return errors
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cycles", type=int, default=1500, help="cycles per team's path")
     parser.add_argument("--launches", type=int, default=8, help="balls rolled")
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--walk-seconds", type=float, default=30.0, help="walking measurement")
     args = parser.parse_args()
 
     left = carried_robot("Left", args.cycles, args.seed)
@@ -193,6 +249,11 @@ def main() -> None:
     print(f"loc_restarts: {left['restarts'][0] + right['restarts'][0]}")
     for name, value in update_costs(left["messages"]).items():
         print(f"{name}: {value:.1f}")
+    walking = walking_robot(args.walk_seconds, args.seed)
+    if walking["m"]:
+        print(f"loc_walking_error_m_median: {np.median(walking['m']):.4f}")
+        print(f"loc_walking_error_deg_median: {np.median(walking['deg']):.3f}")
+    print(f"loc_walking_falls: {walking['falls'][0]}")
     balls = rolling_balls(args.launches, args.seed)
     print(f"ball_error_m_median: {np.median(balls['m']):.4f}")
     print(f"ball_velocity_error_mps_median: {np.median(balls['mps']):.3f}")
