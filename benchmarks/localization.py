@@ -42,7 +42,6 @@ from world.localization import wrap_deg
 from world.perception import parse_perception
 from world.world_model import WorldModel
 
-SCENE = b"(scene rsg/agent/nao/nao_hetero.rsg 0)"
 STANDING_Z = 0.38
 
 
@@ -54,11 +53,7 @@ def _trainer(session: Session, text: str) -> None:
 
 
 def _connect(session: Session, team: str, unum: int = 1) -> int:
-    agent = session.add_agent()
-    session.handle_message(agent, SCENE)
-    session.step()
-    session.handle_message(agent, f"(init (unum {unum})(teamname {team}))(syn)".encode())
-    return agent
+    return session.join(team, unum)
 
 
 def _move(session: Session, side: str, x: float, y: float, heading: float) -> None:

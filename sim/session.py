@@ -31,6 +31,7 @@ from sim.monitor import (
     RequestFullState,
     SetPlayMode,
     TrainerCommand,
+    parse_trainer_commands,
 )
 from sim.physics import CYCLE_SECONDS, PhysicsWorld
 from sim.referee import BallInfo, Event, PlaceBall, PlayerInfo, Referee, RefereeConfig
@@ -186,6 +187,38 @@ class Session:
         for error in errors:
             log.warning("agent %d: %s", agent_id, error)
         return errors
+
+    def join(
+        self,
+        team_name: str,
+        unum: int = 0,
+        robot_type: int = 0,
+        beam: tuple[float, float, float] | None = None,
+        settle_cycles: int = 0,
+    ) -> int:
+        """Connect an in-process agent as a client does (``scene``, ``init``, optionally
+        ``beam``), through the same bytes, then step ``settle_cycles``; returns its id.
+        A convenience for tests, benchmarks and training set-ups."""
+        agent = self.add_agent()
+        self.handle_message(agent, f"(scene {NAO_SCENE} {robot_type})".encode())
+        self.step()
+        self.handle_message(agent, f"(init (unum {unum})(teamname {team_name}))(syn)".encode())
+        self.step()
+        if beam is not None:
+            x, y, deg = beam
+            self.handle_message(agent, f"(beam {x} {y} {deg})(syn)".encode())
+        for _ in range(settle_cycles):
+            self.step()
+        return agent
+
+    def trainer(self, text: str | bytes) -> None:
+        """Queue trainer commands written as on the monitor port, e.g.
+        ``"(ball (pos 0 0 0.042) (vel 4 0 0))"``; ValueError lists any bad command."""
+        payload = text.encode() if isinstance(text, str) else text
+        commands, errors = parse_trainer_commands(payload)
+        if errors:
+            raise ValueError("; ".join(errors))
+        self.trainer_command(commands)
 
     def syn_received(self, payload: bytes) -> bool:
         """Whether a raw message contains ``(syn)`` (the sync-mode server counts these)."""

@@ -17,9 +17,6 @@ from world.effectors import EffectorMessage, write_effectors
 from world.nao_model import robot_spec
 from world.perception import parse_perception
 
-SCENE = b"(scene rsg/agent/nao/nao_hetero.rsg 0)"
-
-
 # --------------------------------------------------------------------------------------------
 # Unit behaviour
 # --------------------------------------------------------------------------------------------
@@ -108,14 +105,7 @@ def test_default_gain_cannot_overshoot_with_a_two_cycle_latency():
 def standing():
     """A session with one robot beamed in and standing still, and its agent id."""
     session = Session(SessionConfig(seed=1, beam_noise=False, vision_noise=False))
-    agent = session.add_agent()
-    session.handle_message(agent, SCENE)
-    session.step()
-    session.handle_message(agent, b"(init (unum 1)(teamname Alpha))(syn)")
-    session.step()
-    session.handle_message(agent, b"(beam -2.0 0.0 0.0)(syn)")
-    for _ in range(40):
-        session.step()
+    agent = session.join("Alpha", 1, beam=(-2.0, 0.0, 0.0), settle_cycles=40)
     yield session, agent
     session.close()
 

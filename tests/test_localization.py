@@ -14,7 +14,6 @@ from world.localization import Localizer, team_landmarks, team_lines, wrap_deg
 from world.perception import parse_perception
 from world.world_model import WorldModel
 
-SCENE = b"(scene rsg/agent/nao/nao_hetero.rsg 0)"
 #: the server's standing torso height (m), where the trainer puts the robot
 STANDING_Z = 0.38
 
@@ -142,11 +141,7 @@ def _trainer(session: Session, text: str) -> None:
 
 
 def _connect(session: Session, team: str, unum: int = 1) -> int:
-    agent = session.add_agent()
-    session.handle_message(agent, SCENE)
-    session.step()
-    session.handle_message(agent, f"(init (unum {unum})(teamname {team}))(syn)".encode())
-    return agent
+    return session.join(team, unum)
 
 
 def _path(cycles: int, start: tuple[float, float, float], every: int):

@@ -18,9 +18,6 @@ from world.effectors import EffectorMessage, write_effectors
 from world.perception import parse_perception
 from world.robot_state import RobotState
 
-SCENE = b"(scene rsg/agent/nao/nao_hetero.rsg 0)"
-
-
 # --------------------------------------------------------------------------------------------
 # Skills defined for these tests (names start with "test_" to stay out of real skill lists)
 # --------------------------------------------------------------------------------------------
@@ -302,13 +299,7 @@ def test_agent_loop_drives_a_simulated_robot_to_zero_and_holds_it():
     """The whole path: perception bytes -> RobotState -> manager -> effector bytes."""
     session = Session(SessionConfig(seed=2, beam_noise=False, vision_noise=False))
     try:
-        agent = session.add_agent()
-        session.handle_message(agent, SCENE)
-        session.step()
-        session.handle_message(agent, b"(init (unum 1)(teamname Alpha))(syn)")
-        session.step()
-        session.handle_message(agent, b"(beam -2.0 0.0 0.0)(syn)")
-        session.step()
+        agent = session.join("Alpha", 1, beam=(-2.0, 0.0, 0.0), settle_cycles=1)
         session.handle_message(agent, b"(he1 -3.0)(rae1 3.0)(lae2 2.0)(syn)")  # leave zero
         for _ in range(20):
             session.step()

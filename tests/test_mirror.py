@@ -32,7 +32,6 @@ from world.effectors import EffectorMessage, write_effectors
 from world.nao_model import ROBOT_TYPES, RobotSpec, robot_spec
 from world.perception import parse_perception
 
-SCENE = b"(scene rsg/agent/nao/nao_hetero.rsg 0)"
 TYPE4 = robot_spec(4)  # every joint of every type (type 4 adds the toes)
 ALL_JOINTS = TYPE4.perceptor_names
 TYPE0_JOINTS = robot_spec(0).perceptor_names
@@ -263,14 +262,7 @@ def _torso_track(frames, extra_cycles: int = 50) -> tuple[np.ndarray, np.ndarray
     the torso's sideways offset (m) and roll (degrees) every cycle."""
     session = Session(SessionConfig(seed=1, beam_noise=False, vision_noise=False))
     try:
-        agent = session.add_agent()
-        session.handle_message(agent, SCENE)
-        session.step()
-        session.handle_message(agent, b"(init (unum 1)(teamname Alpha))(syn)")
-        session.step()
-        session.handle_message(agent, b"(beam -2.0 0.0 0.0)(syn)")
-        for _ in range(40):
-            session.step()
+        agent = session.join("Alpha", 1, beam=(-2.0, 0.0, 0.0), settle_cycles=40)
         robot = session.agents[agent].robot
         start_y = robot.torso_position()[1]
         schedule = [targets for targets, seconds in frames for _ in range(round(seconds / 0.02))]

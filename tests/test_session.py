@@ -7,7 +7,6 @@ import math
 
 import pytest
 
-from sim.monitor import parse_trainer_commands
 from sim.session import Session, SessionConfig
 from world.perception import parse_perception
 
@@ -16,22 +15,11 @@ SCENE = b"(scene rsg/agent/nao/nao_hetero.rsg 0)"
 
 def _join(session: Session, team: str = "Alpha", unum: int = 1, beam=(-2.0, 0.0, 0.0)) -> int:
     """Connect one agent, init and beam it, and let it settle on its feet (play mode unchanged)."""
-    agent = session.add_agent()
-    session.handle_message(agent, SCENE)
-    session.step()
-    session.handle_message(agent, f"(init (unum {unum})(teamname {team}))(syn)".encode())
-    session.step()
-    x, y, deg = beam
-    session.handle_message(agent, f"(beam {x} {y} {deg})(syn)".encode())
-    for _ in range(40):
-        session.step()
-    return agent
+    return session.join(team, unum, beam=beam, settle_cycles=40)
 
 
 def _trainer(session: Session, text: str) -> None:
-    commands, errors = parse_trainer_commands(text.encode())
-    assert not errors, errors
-    session.trainer_command(commands)
+    session.trainer(text)
 
 
 @pytest.fixture
