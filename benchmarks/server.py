@@ -51,14 +51,7 @@ def inprocess_cycles_per_s(cycles: int, with_perception: bool) -> float:
     from sim.session import Session, SessionConfig
 
     session = Session(SessionConfig(seed=0))
-    agent = session.add_agent()
-    session.handle_message(agent, SCENE.format(0).encode())
-    session.step()
-    session.handle_message(agent, b"(init (unum 1)(teamname Bench))(syn)")
-    session.step()
-    session.handle_message(agent, b"(beam -2 0 0)(syn)")
-    for _ in range(20):
-        session.step()
+    agent = session.join("Bench", 1, beam=(-2.0, 0.0, 0.0), settle_cycles=20)
     start = time.perf_counter()
     for i in range(cycles):
         session.handle_message(agent, _joint_command(i, 0.0))
