@@ -219,15 +219,16 @@ class StepGenerator:
         swing = self._left if self._left_active else self._right
         side = 1.0 if self._left_active else -1.0
         self._lift_off = swing
-        # landing pose in the walk frame at the END of this step: the neutral place turned by
-        # half the turn, ahead by half the step (the support foot ends half a step behind)
-        half = 0.5
-        yaw = c.turn * half
+        # landing pose in the walk frame at the END of this step. Forward: half the step ahead
+        # (the support foot ends half a step behind). Sideways and turning, the feet must not
+        # close in on each other (the soles are 0.08 m wide, 0.03 m apart at the neutral
+        # stance): the leg on the side of the motion opens by the whole step, the other one
+        # closes back to its neutral place, so the feet alternate between open and parallel.
+        left = c.left if c.left * side > 0.0 else 0.0
+        yaw = c.turn if c.turn * side > 0.0 else 0.0
         cy, sy = math.cos(yaw), math.sin(yaw)
         neutral = side * p.foot_spread
-        self._landing_planned = FootPose(
-            -sy * neutral + c.forward * half, cy * neutral + c.left * half, yaw
-        )
+        self._landing_planned = FootPose(-sy * neutral + c.forward * 0.5, cy * neutral + left, yaw)
 
     @property
     def _support(self) -> FootPose:
