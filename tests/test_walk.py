@@ -118,7 +118,6 @@ def test_walk_forward_covers_2_m_in_5_s_type0():
     assert not fell and distance >= 2.0
 
 
-@pytest.mark.xfail(strict=True, reason="walking is not yet stable enough to reach targets")
 def test_walk_to_target_stops_within_10_cm():
     driver = new_driver(0, seed=1, beam=(-6.0, 0.0, 0.0))
     try:
