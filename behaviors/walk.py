@@ -73,6 +73,9 @@ class WalkParameters:
     #: sideways landing shift (m, to the right) per deg/s of roll rate and per degree of roll
     landing_roll_rate_gain: float = 0.0
     landing_roll_gain: float = 0.0
+    #: share of max_turn left at full forward speed (walking fast and turning hard trips the
+    #: robot: the turning swing foot catches the support foot); in between it shrinks linearly
+    turn_share_at_full_speed: float = 1.0
     #: turn correction (deg/s) per degree of heading drift from the commanded turn (gyro)
     heading_hold_gain: float = 0.0
     #: how much of the planned torso motion really happens (measured)
@@ -184,7 +187,16 @@ class WalkEngine:
         duration = self.params.step.step_cycles * CYCLE_SECONDS
         x, y, w = self.velocity
         w -= math.radians(self.params.heading_hold_gain * self._heading_drift)
-        return StepCommand(x * duration, y * duration, w * duration).clipped(self.params.step)
+        command = StepCommand(x * duration, y * duration, w * duration).clipped(self.params.step)
+        return self._turn_limited(command)
+
+    def _turn_limited(self, command: StepCommand) -> StepCommand:
+        """The command with its turn reduced as the forward step grows."""
+        step = self.params.step
+        speed_share = min(1.0, abs(command.forward) / step.max_forward)
+        keep = 1.0 - (1.0 - self.params.turn_share_at_full_speed) * speed_share
+        limit = step.max_turn * keep
+        return replace(command, turn=min(max(command.turn, -limit), limit))
 
     def _next_foot_targets(self, context: SkillContext) -> FootTargets:
         """Targets of the next cycle, or the stance when standing still between steps."""
