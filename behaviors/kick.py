@@ -1,0 +1,161 @@
+"""The kick from a stand: weight onto the support leg, kicking leg back, swing, back to stand.
+
+``execute("kick", foot, strength)`` plays the motion of ``behaviors/data/kicks.yaml`` for the
+``"left"`` foot, or its mirror image for the ``"right"`` foot (``behaviors.keyframes.mirrored``:
+one motion, so the two sides can never drift apart). The skill expects the robot standing with
+the ball just in front of the kicking foot; walking there and aligning is the caller's job.
+
+Why the swing is scaled by speed rather than by range: the ball leaves the foot at roughly
+``(1 + e)`` times the foot's speed (the foot is far heavier than the ball), so the swing's joint
+speed is what decides the distance, while the swing's range decides where the foot meets the
+ball, which must not change with strength. The swing frames therefore keep their targets and
+only stretch their duration: at strength 1 they last ``fast_s`` (the joints' speed limits then
+cap the motion, so this is the strongest kick), at strength 0 ``slow_s``; in between the foot
+*speed* (1 / duration) is interpolated linearly, which keeps the distance close to linear in
+strength. The swing frames track predictively (``track: predictive``): the gain controller's
+four-cycle lag would cut off a fast swing before the foot reaches the ball.
+
+Sequences are looked up per robot type first (``kick_left_type3``), then by the common name, as
+the get-up does.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+from behaviors.keyframes import KeyframePlayer, KeyframeSequence, mirrored, parse_sequences
+from behaviors.poses import DATA_DIR, PoseError, check_fields, check_number, read_yaml_mapping
+from behaviors.skill import Skill, SkillContext
+
+KICKS_FILE = DATA_DIR / "kicks.yaml"
+#: The name of the packaged left-foot kick; the right foot plays its mirror image.
+KICK_LEFT = "kick_left"
+FEET = ("left", "right")
+
+
+@dataclass(frozen=True)
+class KickMotion:
+    """A left-foot kick: keyframes plus which frames form the swing and how strength scales it.
+
+    ``swing_frames`` index ``frames.frames``; at strength ``s`` each of them lasts
+    ``1 / ((1 - s) / slow_s + s / fast_s)`` of its ``fast_s``-normalised share, i.e. the swing
+    as a whole lasts ``fast_s`` at ``s = 1`` and ``slow_s`` at ``s = 0``.
+    """
+
+    name: str
+    frames: KeyframeSequence
+    swing_frames: tuple[int, ...]
+    fast_s: float
+    slow_s: float
+
+    def swing_duration(self, strength: float) -> float:
+        """Seconds the swing lasts at ``strength`` (0..1): foot speed linear in strength."""
+        strength = min(max(strength, 0.0), 1.0)
+        return 1.0 / ((1.0 - strength) / self.slow_s + strength / self.fast_s)
+
+    def sequence(self, strength: float, mirror: bool = False) -> KeyframeSequence:
+        """The keyframes to play for ``strength``; ``mirror=True`` gives the right-foot kick."""
+        written = sum(self.frames.frames[i].duration for i in self.swing_frames)
+        scale = self.swing_duration(strength) / written
+        frames = tuple(
+            replace(frame, duration=frame.duration * scale) if i in self.swing_frames else frame
+            for i, frame in enumerate(self.frames.frames)
+        )
+        sequence = replace(self.frames, frames=frames)
+        return mirrored(sequence) if mirror else sequence
+
+    def contact_time(self, strength: float) -> float:
+        """Seconds from the first cycle to the start of the swing (the foot then meets the
+        ball within the swing's first part)."""
+        frames = self.sequence(strength).frames
+        return sum(frames[i].total for i in range(min(self.swing_frames)))
+
+
+def parse_kicks(data: Mapping[str, Any], source: str) -> dict[str, KickMotion]:
+    """Build kick motions from the mapping read out of ``source`` (a file name, for messages)."""
+    kicks = {}
+    for name, entry in data.items():
+        where = f"{source}: kick {name!r}"
+        check_fields(entry, where, {"frames", "swing"}, {"description"})
+        sequence_entry = {"frames": entry["frames"], "description": entry.get("description", "")}
+        sequence = parse_sequences({name: sequence_entry}, source)[str(name)]
+        kicks[str(name)] = KickMotion(
+            str(name), sequence, *_parse_swing(entry["swing"], f"{where}.swing", sequence)
+        )
+    return kicks
+
+
+def _parse_swing(
+    data: Any, where: str, sequence: KeyframeSequence
+) -> tuple[tuple[int, ...], float, float]:
+    check_fields(data, where, {"frames", "fast_s", "slow_s"}, set())
+    indices = data["frames"]
+    count = len(sequence.frames)
+    if (
+        not isinstance(indices, list)
+        or not indices
+        or not all(isinstance(i, int) and 0 <= i < count for i in indices)
+    ):
+        raise PoseError(f"{where}.frames: expected a list of frame indices in 0..{count - 1}")
+    fast = check_number(data["fast_s"], f"{where}.fast_s")
+    slow = check_number(data["slow_s"], f"{where}.slow_s")
+    if not 0 < fast <= slow:
+        raise PoseError(f"{where}: need 0 < fast_s <= slow_s, got {fast}, {slow}")
+    return tuple(indices), fast, slow
+
+
+def load_kicks(path: str | Path = KICKS_FILE) -> dict[str, KickMotion]:
+    """Read and validate a kick file (default: the packaged ``kicks.yaml``)."""
+    path = Path(path)
+    return parse_kicks(read_yaml_mapping(path), str(path))
+
+
+@cache
+def default_kicks() -> dict[str, KickMotion]:
+    """The packaged kicks, read once per process (they are immutable)."""
+    return load_kicks(KICKS_FILE)
+
+
+def kick_motion(robot_type: int, kicks: Mapping[str, KickMotion] | None = None) -> KickMotion:
+    """The robot type's own left-foot kick if there is one, else the common one."""
+    kicks = default_kicks() if kicks is None else kicks
+    return kicks.get(f"{KICK_LEFT}_type{robot_type}") or kicks[KICK_LEFT]
+
+
+class KickSkill(Skill):
+    """``execute("kick", foot, strength)``: kick with ``"left"``/``"right"`` at 0..1.
+
+    Finished once the motion has brought the robot back into the stand pose. Asking for the
+    other foot or another strength while a kick plays does not interrupt it: a half-played
+    kick would leave the robot on one leg.
+    """
+
+    name = "kick"
+
+    def __init__(self) -> None:
+        self._player: KeyframePlayer | None = None
+        self._done = False
+
+    def reset(self) -> None:
+        self._player = None
+        self._done = False
+
+    def validate(self, foot: str, strength: float = 1.0) -> None:
+        if foot not in FEET:
+            raise ValueError(f"foot must be one of {', '.join(FEET)}, got {foot!r}")
+        if not 0.0 <= strength <= 1.0:
+            raise ValueError(f"strength must be in [0, 1], got {strength!r}")
+
+    def step(self, context: SkillContext, foot: str, strength: float = 1.0) -> bool:
+        robot = context.world.robot
+        if self._player is None or self._done:
+            motion = kick_motion(robot.robot_type)
+            sequence = motion.sequence(strength, mirror=foot == "right")
+            self._player = KeyframePlayer(sequence, robot.robot_type)
+            self._done = False
+        self._done = self._player.step(context.commands, robot.joints_deg)
+        return self._done
