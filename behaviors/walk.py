@@ -181,7 +181,9 @@ class WalkEngine:
         and the swing leg twists the body); the step's turn works against the drift."""
         turn = float(context.world.robot.gyro_deg_s @ context.world.robot.up)
         drift = self._heading_drift + (turn - math.degrees(self.velocity[2])) * CYCLE_SECONDS
-        self._heading_drift = max(-30.0, min(30.0, drift)) if self._stepping else 0.0
+        moving = self._stepping and self.velocity != (0.0, 0.0, 0.0)
+        # stopping, the drift is forgotten: a correcting turn would keep the robot stepping
+        self._heading_drift = max(-30.0, min(30.0, drift)) if moving else 0.0
 
     def _step_command(self) -> StepCommand:
         duration = self.params.step.step_cycles * CYCLE_SECONDS
@@ -210,7 +212,7 @@ class WalkEngine:
             self._stepping = False
             return generator.stand_targets()
         self._stepping = True
-        if between_steps:
+        if between_steps and not still:  # stopping: the feet go home, the robot stays put
             command = self._balanced(command, context)
         return generator.next_targets(command)
 
@@ -365,10 +367,10 @@ class WalkVelocitySkill(_WalkBase):
 
 
 #: Walking to a target: arrive within this distance (m) and heading error (deg) ...
-ARRIVE_DISTANCE = 0.04
+ARRIVE_DISTANCE = 0.06
 ARRIVE_HEADING_DEG = 8.0
 #: ... and count as left again beyond these (hysteresis)
-LEAVE_DISTANCE = 0.1
+LEAVE_DISTANCE = 0.2
 LEAVE_HEADING_DEG = 20.0
 #: Beyond this distance a heading of None means facing the direction of travel.
 FACE_TRAVEL_DISTANCE = 0.4
@@ -380,6 +382,9 @@ class GoToGains:
 
     #: m/s per m of remaining distance, and the cap near the target
     position_gain: float = 1.5
+    #: the slowest approach (m/s): shorter steps are lost in the joints' give and the robot
+    #: treads on the spot short of the target
+    min_speed: float = 0.2
     #: deg/s per degree of heading error
     heading_gain: float = 3.0
     max_turn_deg: float = 120.0
@@ -387,7 +392,7 @@ class GoToGains:
 
 class WalkSkill(_WalkBase):
     """Walk to (x, y) in the team frame, facing heading_deg at the end (None: the direction of
-    travel); finished once within 0.1 m (aiming for 0.04) and standing still."""
+    travel); finished once within 0.1 m (aiming for 0.06) and standing still."""
 
     name = "walk"
 
@@ -449,7 +454,7 @@ class WalkSkill(_WalkBase):
         duration = step.step_cycles * CYCLE_SECONDS
         max_forward = step.max_forward / duration
         max_side = step.max_side / duration
-        speed = min(g.position_gain * distance, max_forward)
+        speed = max(min(g.position_gain * distance, max_forward), g.min_speed)
         vx = speed * forward / max(distance, 1e-9)
         vy = speed * left / max(distance, 1e-9)
         # turning first when the target is behind: slow down while the heading is far off
