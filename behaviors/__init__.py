@@ -36,6 +36,7 @@ BUILTIN_SKILL_MODULES: tuple[str, ...] = (
     "behaviors.keyframes",
     "behaviors.get_up",
     "behaviors.walk",
+    "behaviors.kick",
 )
 
 for _module in BUILTIN_SKILL_MODULES:
