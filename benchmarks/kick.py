@@ -28,7 +28,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-import behaviors  # noqa: F401  (registers the skills)
+import behaviors.kick  # noqa: F401  (registers the built-in skills and the kick)
 from behaviors.joint_control import CYCLE_SECONDS
 from benchmarks.get_up import LocalDriver
 from sim.session import Session, SessionConfig
