@@ -73,8 +73,9 @@ class WalkParameters:
     #: sideways landing shift (m, to the right) per deg/s of roll rate and per degree of roll
     landing_roll_rate_gain: float = 0.0
     landing_roll_gain: float = 0.0
-    #: share of max_turn left at full forward speed (walking fast and turning hard trips the
-    #: robot: the turning swing foot catches the support foot); in between it shrinks linearly
+    #: share of max_turn left at full forward or sideways speed (walking fast and turning hard
+    #: trips the robot: the turning swing foot catches the support foot); in between it shrinks
+    #: linearly
     turn_share_at_full_speed: float = 1.0
     #: turn correction (deg/s) per degree of heading drift from the commanded turn (gyro)
     heading_hold_gain: float = 0.0
@@ -195,7 +196,10 @@ class WalkEngine:
     def _turn_limited(self, command: StepCommand) -> StepCommand:
         """The command with its turn reduced as the forward step grows."""
         step = self.params.step
-        speed_share = min(1.0, abs(command.forward) / step.max_forward)
+        speed_share = max(
+            abs(command.forward) / step.max_forward, abs(command.left) / step.max_side
+        )
+        speed_share = min(1.0, speed_share)
         keep = 1.0 - (1.0 - self.params.turn_share_at_full_speed) * speed_share
         limit = step.max_turn * keep
         return replace(command, turn=min(max(command.turn, -limit), limit))
@@ -386,7 +390,7 @@ class GoToGains:
     #: treads on the spot short of the target
     min_speed: float = 0.2
     #: deg/s per degree of heading error
-    heading_gain: float = 3.0
+    heading_gain: float = 2.0
     max_turn_deg: float = 120.0
 
 
@@ -457,10 +461,12 @@ class WalkSkill(_WalkBase):
         speed = max(min(g.position_gain * distance, max_forward), g.min_speed)
         vx = speed * forward / max(distance, 1e-9)
         vy = speed * left / max(distance, 1e-9)
-        # turning first when the target is behind: slow down while the heading is far off
-        slow = max(0.0, math.cos(math.radians(min(abs(heading_error), 90.0))))
-        if distance > FACE_TRAVEL_DISTANCE:
+        # turning first when the target is off to one side: walking and turning hard at once
+        # trips the robot; at 45 degrees or more off it turns on the spot
+        slow = math.cos(math.radians(min(2.0 * abs(heading_error), 90.0)))
+        if distance > FACE_TRAVEL_DISTANCE:  # far away: no sidestepping, face the way first
             vx *= slow
+            vy *= slow
         vy = max(-max_side, min(max_side, vy))
         vturn = max(-g.max_turn_deg, min(g.max_turn_deg, g.heading_gain * heading_error))
         return vx, vy, vturn
