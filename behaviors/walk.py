@@ -371,7 +371,7 @@ class WalkVelocitySkill(_WalkBase):
 
 
 #: Walking to a target: arrive within this distance (m) and heading error (deg) ...
-ARRIVE_DISTANCE = 0.06
+ARRIVE_DISTANCE = 0.04
 ARRIVE_HEADING_DEG = 8.0
 #: ... and count as left again beyond these (hysteresis)
 LEAVE_DISTANCE = 0.2
@@ -396,7 +396,7 @@ class GoToGains:
 
 class WalkSkill(_WalkBase):
     """Walk to (x, y) in the team frame, facing heading_deg at the end (None: the direction of
-    travel); finished once within 0.1 m (aiming for 0.06) and standing still."""
+    travel); finished once within 0.1 m (aiming for 0.04) and standing still."""
 
     name = "walk"
 
