@@ -374,7 +374,7 @@ class WalkVelocitySkill(_WalkBase):
 ARRIVE_DISTANCE = 0.04
 ARRIVE_HEADING_DEG = 8.0
 #: ... and count as left again beyond these (hysteresis)
-LEAVE_DISTANCE = 0.2
+LEAVE_DISTANCE = 0.08
 LEAVE_HEADING_DEG = 20.0
 #: Beyond this distance a heading of None means facing the direction of travel.
 FACE_TRAVEL_DISTANCE = 0.4
