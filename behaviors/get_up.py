@@ -115,11 +115,10 @@ class GetUpSkill(Skill):
             sequence = sequence_for(ROLL_FROM_LEFT, state.robot_type)
             if side == "right":
                 sequence = mirrored(sequence)
-            self._attempt = _Attempt(KeyframePlayer(sequence), rolling=True)
+            self._attempt = _Attempt(KeyframePlayer(sequence, state.robot_type), rolling=True)
         else:
-            self._attempt = _Attempt(
-                KeyframePlayer(sequence_for(f"get_up_{side}", state.robot_type))
-            )
+            sequence = sequence_for(f"get_up_{side}", state.robot_type)
+            self._attempt = _Attempt(KeyframePlayer(sequence, state.robot_type))
 
     def _play(self, context: SkillContext, state: RobotState) -> bool:
         attempt = self._attempt
