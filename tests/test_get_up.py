@@ -11,7 +11,15 @@ import numpy as np
 import pytest
 
 from behaviors.get_up import GetUpSkill, robot_stands, sequence_for
-from behaviors.poses import get_pose, support_margin
+from behaviors.joint_control import CYCLE_SECONDS, JointCommands
+from behaviors.keyframes import (
+    Keyframe,
+    KeyframePlayer,
+    KeyframeSequence,
+    PredictiveTracker,
+    parse_sequences,
+)
+from behaviors.poses import PoseError, get_pose, support_margin
 from world.perception import ForceResistance, Perception
 from world.robot_state import RobotState
 
@@ -43,6 +51,52 @@ def test_sequences_are_looked_up_per_type_then_shared():
     assert sequence_for("get_up_front", 3).name in ("get_up_front_type3", "get_up_front")
     with pytest.raises(KeyError):
         sequence_for("no_such_motion", 0)
+
+
+def test_predictive_speed_subtracts_the_command_still_in_flight():
+    tracker = PredictiveTracker(0)
+    first = tracker.speeds({"raj1": 5.0}, {"raj1": 0.0})
+    assert first["raj1"] == pytest.approx(np.radians(5.0) / CYCLE_SECONDS)
+    # the joint has not moved yet (the command shows two perceptions later): nothing more to ask
+    assert tracker.speeds({"raj1": 5.0}, {"raj1": 0.0})["raj1"] == pytest.approx(0.0)
+    # far targets are clipped to the joint's maximum speed, targets to the joint's range
+    far = tracker.speeds({"raj1": 500.0}, {"raj1": 0.0})["raj1"]
+    assert far == pytest.approx(6.1395, abs=1e-3)
+
+
+def test_predictive_frames_need_the_robot_type_and_a_known_mode():
+    sequences = parse_sequences(
+        {"m": {"frames": [{"duration": 0.1, "joints": {"hj1": 10}, "track": "predictive"}]}}, "t"
+    )
+    assert sequences["m"].predictive
+    with pytest.raises(ValueError):
+        KeyframePlayer(sequences["m"])
+    with pytest.raises(PoseError):
+        parse_sequences({"m": {"frames": [{"duration": 0.1, "joints": {}, "track": "fast"}]}}, "t")
+
+
+def test_predictive_tracking_follows_a_ramp_two_cycles_behind():
+    """A free arm follows a 225 deg/s ramp with only the transport delay (two cycles), where
+    the gain-0.25 controller lags four cycles more."""
+    session = Session(SessionConfig(seed=1, beam_noise=False))
+    try:
+        driver = join(session, 0, np.random.default_rng(1))
+        ramp = Keyframe({"raj1": 0.0}, 0.4, "linear", 0.1, track="predictive")
+        player = KeyframePlayer(KeyframeSequence("ramp", (ramp,)), 0)
+        sent, measured = [], []
+        finished = False
+        while not finished:
+            driver.perceive()
+            driver.behavior.begin_cycle()
+            measured.append(driver.state.joints_deg["raj1"])
+            sent.append(player.targets(driver.state.joints_deg)[0]["raj1"])
+            finished = player.step(driver.commands, driver.state.joints_deg)
+            driver.send(driver.commands.effector_speeds(driver.state.joints_deg))
+        assert isinstance(driver.commands, JointCommands)
+        errors = [abs(m - t) for m, t in zip(measured[2:], sent, strict=False)]
+        assert max(errors) < 1.0, errors
+    finally:
+        session.close()
 
 
 @pytest.mark.parametrize("robot_type", range(5))
