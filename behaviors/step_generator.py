@@ -214,21 +214,38 @@ class StepGenerator:
         p = self.params
         self._t = 0
         self._left_active = not self._left_active
-        self._command = command.clipped(p)
+        side = 1.0 if self._left_active else -1.0
+        self._command = self._turn_allowed(command.clipped(p), side)
         c = self._command
         swing = self._left if self._left_active else self._right
-        side = 1.0 if self._left_active else -1.0
         self._lift_off = swing
         # landing pose in the walk frame at the END of this step. Forward: half the step ahead
         # (the support foot ends half a step behind). Sideways and turning, the feet must not
         # close in on each other (the soles are 0.08 m wide, 0.03 m apart at the neutral
         # stance): the leg on the side of the motion opens by the whole step, the other one
-        # closes back to its neutral place, so the feet alternate between open and parallel.
+        # closes back to its neutral place, but never nearer the support foot than the neutral
+        # stance (the first step from standing may be the other leg's)
         left = c.left if c.left * side > 0.0 else 0.0
         yaw = c.turn if c.turn * side > 0.0 else 0.0
         cy, sy = math.cos(yaw), math.sin(yaw)
         neutral = side * p.foot_spread
-        self._landing_planned = FootPose(-sy * neutral + c.forward * 0.5, cy * neutral + left, yaw)
+        y = cy * neutral + left
+        support_end = self._support.y - c.left
+        y = (
+            max(y, support_end + 2.0 * p.foot_spread)
+            if side > 0
+            else min(y, support_end - 2.0 * p.foot_spread)
+        )
+        self._landing_planned = FootPose(-sy * neutral + c.forward * 0.5, y, yaw)
+
+    def _turn_allowed(self, command: StepCommand, side: float) -> StepCommand:
+        """The command with no more turn than the support foot allows: the torso turning over
+        it turns the foot inwards relative to the torso, and the hip yaw-pitch joint only turns
+        a foot outwards, so the support foot can only give back the yaw it opened by."""
+        support_yaw = self._support.yaw  # >= 0 for the left foot, <= 0 for the right one
+        if side > 0:  # left swings, right supports: turning right needs an opened right foot
+            return replace(command, turn=max(command.turn, min(0.0, support_yaw)))
+        return replace(command, turn=min(command.turn, max(0.0, support_yaw)))
 
     @property
     def _support(self) -> FootPose:

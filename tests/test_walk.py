@@ -50,6 +50,33 @@ def test_steady_walk_keeps_the_feet_symmetric_about_the_torso():
     assert abs(left.x - right.x) == pytest.approx(0.1, abs=1e-9)
 
 
+@pytest.mark.parametrize("sign", (1.0, -1.0))
+def test_sideways_and_turning_steps_never_close_the_feet_in(sign):
+    """The soles are 0.08 m wide and 0.03 m apart at the neutral stance, and the hip yaw-pitch
+    joint only turns a foot outwards: the leading leg opens, the other closes to neutral,
+    whichever leg steps first."""
+    params = StepParameters()
+    generator = StepGenerator(params)
+    widths, yaws = [], []
+    for _ in range(40):  # the steady state from the third step on
+        generator.next_targets(StepCommand(0.0, sign * 0.05, 0.0))
+        left, right = generator.feet
+        widths.append(left.y - right.y)
+    generator.reset()
+    for _ in range(24):
+        generator.next_targets(StepCommand(0.0, 0.0, sign * 0.3))
+        left, right = generator.feet
+        yaws.append((left.yaw, right.yaw))
+    assert min(widths) >= 2 * params.foot_spread - 1e-9
+    assert max(widths[-16:]) == pytest.approx(2 * params.foot_spread + 0.1, abs=1e-9)
+    # the left foot never turns right, nor the right one left, beyond the hip's 1 degree (a
+    # lifted foot lags the turning torso for a cycle or two)
+    hip_limit = math.radians(1.0)
+    assert min(left for left, _ in yaws) >= -hip_limit
+    assert max(right for _, right in yaws) <= hip_limit
+    assert max(left - right for left, right in yaws) == pytest.approx(0.6, abs=1e-9)
+
+
 def test_commands_are_clipped_to_the_step_limits():
     params = StepParameters(max_forward=0.1, max_side=0.04, max_turn=0.3, backward_share=0.5)
     clipped = StepCommand(1.0, -1.0, 2.0).clipped(params)
