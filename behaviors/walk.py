@@ -194,7 +194,7 @@ class WalkEngine:
         return self._turn_limited(command)
 
     def _turn_limited(self, command: StepCommand) -> StepCommand:
-        """The command with its turn reduced as the forward step grows."""
+        """The command with its turn reduced as the forward or sideways step grows."""
         step = self.params.step
         speed_share = max(
             abs(command.forward) / step.max_forward, abs(command.left) / step.max_side
@@ -386,8 +386,8 @@ class GoToGains:
 
     #: m/s per m of remaining distance, and the cap near the target
     position_gain: float = 1.5
-    #: the slowest approach (m/s): shorter steps are lost in the joints' give and the robot
-    #: treads on the spot short of the target
+    #: the slowest approach (m/s): much shorter steps barely move the robot (stepping in
+    #: place drifts a little), and it treads on the spot short of the target
     min_speed: float = 0.2
     #: deg/s per degree of heading error
     heading_gain: float = 2.0
