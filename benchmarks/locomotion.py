@@ -11,7 +11,8 @@ ground truth (torso position and heading). Per type it prints:
 * ``falls_60s[typeN]``: falls in 60 s of ``walk`` to random targets (``falls_10s`` over
   10 s with ``--quick``; a fallen robot is put back on its feet by the trainer and counted);
 * ``walk_stop_error_m[typeN]``: mean distance from the target where ``walk`` reported
-  arrival (ground truth), over the reached targets.
+  arrival (ground truth), over the reached targets, and ``walk_stop_error_max_m[typeN]``
+  the largest.
 
 Run: ``.venv/bin/python benchmarks/locomotion.py [--quick] [--types 0 1 2 3 4] [--seed 0]``.
 """
@@ -193,6 +194,7 @@ def main() -> None:
         print(f"falls_{round(random_s)}s{tag}: {falls}")
         error = float(np.mean(errors)) if errors else float("nan")
         print(f"walk_stop_error_m{tag}: {error:.3f} ({reached} targets reached)")
+        print(f"walk_stop_error_max_m{tag}: {max(errors, default=float('nan')):.3f}")
         sys.stdout.flush()
 
 
