@@ -140,6 +140,35 @@ def test_walk_velocity_moves_forward_without_falling_type0():
     assert phases[:8] == [(t, True) for t in range(8)]
 
 
+def _sideways_and_turning_run(robot_type: int, command: tuple, seconds: float):
+    """(left m, turned deg, fell) of the torso in its start frame."""
+    driver = new_driver(robot_type, seed=0)
+    try:
+        x0, y0, h0 = driver.ground_pose()
+        turned, previous = 0.0, h0
+        for _ in range(round(seconds / 0.02)):
+            driver.run("walk_velocity", *command)
+            if driver.fallen():
+                return 0.0, 0.0, True
+            heading = driver.ground_pose()[2]
+            turned += (heading - previous + 180.0) % 360.0 - 180.0
+            previous = heading
+        x, y, _ = driver.ground_pose()
+        h = math.radians(h0)
+        return -math.sin(h) * (x - x0) + math.cos(h) * (y - y0), turned, False
+    finally:
+        driver.session.close()
+
+
+@pytest.mark.parametrize("sign", (1.0, -1.0))
+def test_walk_sideways_and_turn_on_the_spot_type0(sign):
+    """Both fell within 3 s while the trailing foot stepped onto the support foot."""
+    left, _, fell = _sideways_and_turning_run(0, (0.0, sign * 0.4, 0.0), 3.0)
+    assert not fell and sign * left > 0.5
+    _, turned, fell = _sideways_and_turning_run(0, (0.0, 0.0, sign * 120.0), 3.0)
+    assert not fell and sign * turned > 120.0
+
+
 def test_walk_forward_covers_2_m_in_5_s_type0():
     distance, fell, _ = _forward_run(0, 1.0, 5.0)
     assert not fell and distance >= 2.0
