@@ -8,6 +8,10 @@ matching keyframe sequence and finishes once the robot stands again: torso uprig
 carrying the weight. A sequence that ends with the robot still down is tried again from the new
 posture (the caller decides how long to keep trying).
 
+The get-up sequences use predictive tracking (``track: predictive`` in
+``behaviors/data/get_up.yaml``, see :mod:`behaviors.keyframes`): a whole-body motion that lags
+four cycles behind its keyframes, as the gain-0.25 controller does, loses the momentum it needs.
+
 Sequences are looked up per robot type first (``get_up_front_type3``), then by the common name
 (``get_up_front``), so a type whose longer legs need other angles overrides only what differs.
 """

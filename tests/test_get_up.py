@@ -1,8 +1,9 @@
 """Fall detection and the get_up skill: perception-only decisions checked against the simulator.
 
-The get-up sequences do not yet bring the robot back on its feet in this simulator (see
-``benchmarks/get_up.py``); the trial test below is a strict xfail so that it turns red the day
-they do and the marker must go.
+The back get-up (predictive tracking, tuned per type for types 0, 1 and 3) brings part of the
+robots back on their feet; the front get-up does not yet (see ``benchmarks/get_up.py``). The
+trial test below asks for both sides and is a strict xfail so that it turns red the day they
+do and the marker must go.
 """
 
 from __future__ import annotations
@@ -166,7 +167,7 @@ def test_fall_side_from_perception_matches_the_simulator(direction):
         session.close()
 
 
-@pytest.mark.xfail(strict=True, reason="get-up sequences not yet tuned for this simulator")
+@pytest.mark.xfail(strict=True, reason="the front get-up does not yet work in this simulator")
 @pytest.mark.parametrize("robot_type", [0, 3])
 def test_get_up_after_a_physical_fall(robot_type):
     results = [run_trial(robot_type, direction, seed=7) for direction in ("front", "back")]
