@@ -36,7 +36,6 @@ from world.nao_model import ROBOT_TYPES
 from world.perception import parse_perception
 from world.robot_state import RobotState
 
-SCENE = "rsg/agent/nao/nao_hetero.rsg"
 FALL_DIRECTIONS = ("front", "back", "left", "right")
 #: Ground truth for "standing": torso within this angle of vertical ...
 UPRIGHT_DEG = 25.0
@@ -77,18 +76,16 @@ class LocalDriver:
 
 def join(session: Session, robot_type: int, rng: np.random.Generator) -> LocalDriver:
     """Connect a robot of ``robot_type``, beam it, rise slowly into the stand pose, settle."""
-    agent = session.add_agent()
-    session.handle_message(agent, f"(scene {SCENE} {robot_type})".encode())
-    session.step()
-    session.handle_message(agent, b"(init (unum 1)(teamname Fallers))(syn)")
-    session.step()
     x, y, yaw = rng.uniform(-10, -2), rng.uniform(-5, 5), rng.uniform(-180, 180)
-    session.handle_message(agent, f"(beam {x:.2f} {y:.2f} {yaw:.1f})(syn)".encode())
-    session.step()
-    session.step()
-    driver = LocalDriver(session, agent, robot_type)
-    # rise from the beam's zero pose slowly: jumping into the stand's bent knees at once tips
-    # the robot over
+    agent = session.join(
+        "Fallers", 1, robot_type, beam=(round(x, 2), round(y, 2), round(yaw, 1)), settle_cycles=2
+    )
+    return rise_to_stand(LocalDriver(session, agent, robot_type))
+
+
+def rise_to_stand(driver: LocalDriver) -> LocalDriver:
+    """From the beam's zero pose rise slowly into ``stand`` and hold it half a second: jumping
+    into the stand's bent knees at once tips the robot over."""
     while not driver.run_skill("keyframe", "stand_up_slowly"):
         pass
     for _ in range(25):

@@ -30,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import behaviors.kick  # noqa: F401  (registers the built-in skills and the kick)
 from behaviors.joint_control import CYCLE_SECONDS
-from benchmarks.get_up import LocalDriver
+from benchmarks.get_up import LocalDriver, rise_to_stand
 from sim.session import Session, SessionConfig
 from world.field_geometry import BALL_RADIUS
 
@@ -62,12 +62,7 @@ class KickResult:
 def stand_up(session: Session, robot_type: int) -> LocalDriver:
     """Join a robot at :data:`START`, rise slowly into ``stand`` and hold it half a second."""
     agent = session.join("Kickers", 1, robot_type, beam=START, settle_cycles=2)
-    driver = LocalDriver(session, agent, robot_type)
-    while not driver.run_skill("keyframe", "stand_up_slowly"):
-        pass
-    for _ in range(25):
-        driver.run_skill("pose", "stand")
-    return driver
+    return rise_to_stand(LocalDriver(session, agent, robot_type))
 
 
 def place_ball_in_front_of(driver: LocalDriver, foot: str, gap: float) -> tuple[float, float]:
