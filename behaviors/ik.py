@@ -302,9 +302,14 @@ def _leg_forward(leg: _Leg, q: Matrix) -> tuple[Matrix, Matrix, Matrix, Matrix]:
     return rotation, position, anchors, axes
 
 
+#: Newton steps stop once position (m) and orientation errors are below this: a micrometre is
+#: far below what a joint command in hundredths of a degree can express.
+REFINE_TOLERANCE = 1e-6
+
+
 def _refine(leg: _Leg, q: Matrix, rotation: Matrix, roll_anchor: Matrix, steps: int = 8) -> Matrix:
     """Newton steps on the full chain (geometric Jacobian) from a close start: the closed form
-    is off by the small hip-pitch offset's effect only, so two or three steps reach 1e-9 m."""
+    is off by the small hip-pitch offset's effect only, so one or two steps reach 1e-6 m."""
     for _ in range(steps):
         current, end, anchors, axes = _leg_forward(leg, q)
         turn = rotation @ current.T
@@ -313,7 +318,7 @@ def _refine(leg: _Leg, q: Matrix, rotation: Matrix, roll_anchor: Matrix, steps: 
                                                  turn[0, 2] - turn[2, 0],
                                                  turn[1, 0] - turn[0, 1]])]
         )  # fmt: skip
-        if float(np.abs(error).max()) < 1e-9:
+        if float(np.abs(error).max()) < REFINE_TOLERANCE:
             break
         lever = end - anchors
         linear = axes[:, [1, 2, 0]] * lever[:, [2, 0, 1]] - axes[:, [2, 0, 1]] * lever[:, [1, 2, 0]]
