@@ -60,6 +60,15 @@ class Decision:
     say: str | None = None
 
 
+def opponents_restart(play_mode: str, side: str | None) -> bool:
+    """Whether the opponents are taking a kick-off or set piece: then the rules keep our
+    players away from the ball (outside the centre circle, or the free-kick distance)."""
+    lower = play_mode.lower()
+    if side is None or lower == "playon" or not lower.endswith(("_left", "_right")):
+        return False
+    return not lower.endswith("_" + side)
+
+
 class Strategy:
     """Formation, beaming and role assignment for one agent."""
 
@@ -74,7 +83,7 @@ class Strategy:
             behavior.execute("get_up")
         elif world.play_mode in BEAM_MODES or world.play_mode == "GameOver":
             behavior.execute("pose", "stand")
-        elif self.is_active(world):
+        elif self.is_active(world) and not opponents_restart(world.play_mode, world.side):
             self._go_for_ball(world, behavior)
         else:
             self._hold_position(world, behavior)

@@ -129,3 +129,14 @@ def test_short_match_kicks_off_and_reports_the_score():
     assert any("KickOff" in line or "kick" in line.lower() for line in lines), lines
     assert result.score_line() == f"score: Reds {result.score_left} - {result.score_right} Blues"
     assert all(agent.world.side in ("left", "right") for agent in result.agents)
+
+
+def test_opponents_restart_keeps_our_players_back():
+    from agent.strategy import opponents_restart
+
+    assert opponents_restart("KickOff_Right", "left")
+    assert opponents_restart("corner_kick_left", "right")
+    assert not opponents_restart("KickOff_Left", "left")
+    assert not opponents_restart("PlayOn", "left")
+    assert not opponents_restart("BeforeKickOff", "right")
+    assert not opponents_restart("KickIn_Left", None)
