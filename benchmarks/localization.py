@@ -90,11 +90,7 @@ def carried_robot(side: str, cycles: int, seed: int) -> dict[str, list[float]]:
             model.update(perception)
             out["update"].append(time.perf_counter() - start)
             out["messages"].append(message)
-            robot = session.agents[agent].robot
-            gx, gy, _ = robot.torso_position()
-            gh = robot.torso_yaw_deg()
-            if side == "Right":
-                gx, gy, gh = -gx, -gy, gh + 180.0
+            gx, gy, gh = session.agents[agent].robot.team_frame_pose(side)
             pose = model.pose
             if cycle >= 30 and pose is not None:
                 out["m"].append(math.hypot(pose.x - gx, pose.y - gy))

@@ -533,6 +533,15 @@ class SimRobot:
         forward = self._torso_rotation()[:, 1]
         return math.degrees(math.atan2(forward[1], forward[0]))
 
+    def team_frame_pose(self, side: str) -> tuple[float, float, float]:
+        """Ground truth (x, y, heading deg) in a team's frame (x towards its opponent goal): what
+        an agent's localisation estimates, for tests and benchmarks to compare with."""
+        x, y, _ = self.torso_position()
+        heading = self.torso_yaw_deg()
+        if side.lower() == "right":
+            x, y, heading = -x, -y, heading + 180.0
+        return x, y, (heading + 180.0) % 360.0 - 180.0
+
     def torso_up(self) -> np.ndarray:
         """The torso's native +z axis in world coordinates."""
         return self._torso_rotation()[:, 2]

@@ -178,11 +178,7 @@ def _errors(side: str, start, cycles: int = 600, seed: int = 5):
                 )
             session.step()
             model.update(parse_perception(session.perception(agent)))
-            robot = session.agents[agent].robot
-            gx, gy, _ = robot.torso_position()
-            gh = robot.torso_yaw_deg()
-            if side == "Right":
-                gx, gy, gh = -gx, -gy, gh + 180.0
+            gx, gy, gh = session.agents[agent].robot.team_frame_pose(side)
             pose = model.pose
             if cycle >= 30 and pose is not None:
                 distances.append(math.hypot(pose.x - gx, pose.y - gy))
