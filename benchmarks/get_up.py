@@ -9,7 +9,8 @@ succeeds when the skill reports standing within ``time_limit`` seconds and the s
 (torso upright and at standing height, both feet on the ground) and the robot is still up half a
 second later.
 
-Run: ``.venv/bin/python benchmarks/get_up.py [--trials-per-type 20] [--seed 0]``; prints
+Run: ``.venv/bin/python benchmarks/get_up.py [--trials-per-type 20] [--seed 0]
+[--directions front,back] [--types 0,3]``; prints
 ``get_up_success_rate: X``, ``get_up_time_s_median: Y`` and per-type success rates.
 """
 
@@ -195,17 +196,25 @@ def main() -> None:
     parser.add_argument("--trials-per-type", type=int, default=20)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--time-limit", type=float, default=4.0)
+    parser.add_argument(
+        "--directions",
+        default=",".join(FALL_DIRECTIONS),
+        help="fall directions, comma-separated, taken in turn (one side alone for tuning)",
+    )
+    parser.add_argument("--types", default=",".join(map(str, ROBOT_TYPES)))
     args = parser.parse_args()
+    directions = args.directions.split(",")
+    robot_types = [int(t) for t in args.types.split(",")]
     results = []
-    for robot_type in ROBOT_TYPES:
+    for robot_type in robot_types:
         for k in range(args.trials_per_type):
-            direction = FALL_DIRECTIONS[k % len(FALL_DIRECTIONS)]
+            direction = directions[k % len(directions)]
             seed = args.seed + 1000 * robot_type + k
             results.append(run_trial(robot_type, direction, seed, args.time_limit))
     times = [r.time_s for r in results if r.time_s is not None]
     print(f"get_up_success_rate: {sum(r.succeeded for r in results) / len(results):.3f}")
     print(f"get_up_time_s_median: {statistics.median(times) if times else float('nan'):.2f}")
-    for robot_type in ROBOT_TYPES:
+    for robot_type in robot_types:
         mine = [r for r in results if r.robot_type == robot_type]
         rate = sum(r.succeeded for r in mine) / len(mine)
         print(f"get_up_success_rate[type={robot_type}]: {rate:.3f}")
