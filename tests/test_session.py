@@ -212,9 +212,8 @@ def test_right_team_beams_into_its_own_half_facing_the_left_goal(session):
 @pytest.mark.xfail(
     strict=True,
     reason="known bug: pybullet's restoreState fails ('didn't find bodyUniqueId') when a session "
-    "restored before, and another session in the same process has since created bodies "
-    "session in the same process has created bodies after the save; sim/physics.py should "
-    "capture and restore body states itself",
+    "restored before, and another session in the same process has since created bodies; "
+    "sim/physics.py should capture and restore body states itself",
 )
 def test_restore_still_works_after_another_session_was_created():
     sessions = [Session(SessionConfig(seed=seed)) for seed in (1, 2)]
