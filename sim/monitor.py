@@ -44,13 +44,12 @@ are case-sensitive (``Left``, ``Right``), as on the real server.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
 from world.play_modes import PLAY_MODES
-from world.sexp import SExpr, SExpressionError, dumps, parse
+from world.sexp import SExpr, SExpressionError, atom_number, dumps, parse
 
 Team = Literal["Left", "Right"]
 KickOffSide = Literal["Left", "Right", "None"]
@@ -239,15 +238,10 @@ def _excerpt(expr: SExpr, limit: int = 80) -> str:
 
 
 def _number(atom: SExpr, what: str) -> float:
-    if not isinstance(atom, str):
-        raise TrainerCommandError(f"{what}: expected a number, got a list")
     try:
-        value = float(atom)
-    except ValueError:
-        raise TrainerCommandError(f"{what}: {atom!r} is not a number") from None
-    if not math.isfinite(value):
-        raise TrainerCommandError(f"{what}: {atom!r} is not a finite number")
-    return value
+        return atom_number(atom)
+    except ValueError as exc:
+        raise TrainerCommandError(f"{what}: {exc}") from None
 
 
 def _integer(atom: SExpr, what: str) -> int:

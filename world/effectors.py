@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from world.sexp import SExpr, SExpressionError, dumps, parse
+from world.sexp import SExpr, SExpressionError, atom_number, dumps, parse
 
 #: every joint effector name, head, arms (right, left) then legs (right, left); the 7th leg
 #: joint (toe) exists only on robot type 4, which the server checks, not the codec
@@ -67,18 +67,6 @@ def _rename(name: str, prefixes: dict[str, str], what: str) -> str:
     return prefixes[prefix] + number
 
 
-def _number(atom: SExpr) -> float:
-    if not isinstance(atom, str):
-        raise ValueError(f"expected a number, got {dumps(atom)}")
-    try:
-        value = float(atom)
-    except ValueError:
-        raise ValueError(f"expected a number, got {atom!r}") from None
-    if not math.isfinite(value):
-        raise ValueError(f"expected a finite number, got {atom!r}")
-    return value
-
-
 def _integer(atom: SExpr) -> int:
     if not isinstance(atom, str):
         raise ValueError(f"expected an integer, got {dumps(atom)}")
@@ -127,7 +115,7 @@ def _read_init(msg: EffectorMessage, expr: list[SExpr]) -> None:
 
 def _read_beam(msg: EffectorMessage, expr: list[SExpr]) -> None:
     x, y, angle = _arity(expr, 3)
-    msg.beam = (_number(x), _number(y), _number(angle))
+    msg.beam = (atom_number(x), atom_number(y), atom_number(angle))
 
 
 def _read_say(msg: EffectorMessage, expr: list[SExpr]) -> None:
@@ -170,7 +158,7 @@ def parse_effectors(payload: bytes | str) -> tuple[EffectorMessage, list[str]]:
         try:
             if head in _JOINT_EFFECTOR_SET:
                 (speed,) = _arity(expr, 1)
-                msg.joint_speeds[head] = _number(speed)
+                msg.joint_speeds[head] = atom_number(speed)
             elif head in _READERS:
                 _READERS[head](msg, expr)
             else:

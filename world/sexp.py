@@ -13,6 +13,7 @@ instead of about 660.
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Iterable
 from typing import TypeAlias
@@ -122,3 +123,17 @@ def dumps_all(exprs: Iterable[SExpr]) -> str:
             raise SExpressionError(f"top-level expressions must be lists, got {expr!r}")
         pieces.append(dumps(expr))
     return "".join(pieces)
+
+
+def atom_number(atom: SExpr) -> float:
+    """The finite float an atom spells; ValueError saying why not (a list, not a number,
+    NaN or infinity). Shared by every parser of numbers in messages (effectors, trainer)."""
+    if not isinstance(atom, str):
+        raise ValueError(f"expected a number, got {dumps(atom)}")
+    try:
+        value = float(atom)
+    except ValueError:
+        raise ValueError(f"{atom!r} is not a number") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{atom!r} is not a finite number")
+    return value
