@@ -555,8 +555,16 @@ class Session:
         return result
 
     def _monitor_header(self) -> MonitorHeader:
+        """The monitor's header; the rule settings come from the referee actually in use, so
+        a viewer shows the game's own half time and pauses, not a second copy of defaults."""
         team_left, team_right = self.referee.team_names
+        rules = self.referee.config
         return MonitorHeader(
+            free_kick_distance=rules.free_kick_distance,
+            wait_before_kick_off=rules.wait_before_kick_off,
+            rule_goal_pause_time=rules.goal_pause_time,
+            rule_kick_in_pause_time=rules.kick_in_pause_time,
+            rule_half_time=rules.half_time,
             time=self.time,
             half=self.referee.half,
             score_left=self.referee.score_left,
