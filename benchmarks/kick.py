@@ -3,7 +3,7 @@
 A trial: one robot in an in-process :class:`~sim.session.Session` beamed to (-1, 0) facing +x
 rises slowly into ``stand``; the trainer puts the ball (at rest) ``gap`` metres in front of the
 toe of the kicking foot and sets PlayOn. From then on the agent side runs alone through
-perception bytes (``benchmarks.get_up.LocalDriver``) with ``execute("kick", foot, strength)``
+perception bytes (``learning.local_agent.LocalAgent``) with ``execute("kick", foot, strength)``
 until the skill finishes, then holds ``stand`` for three seconds while the ball rolls out.
 Measured from the simulator: how far the ball went, its direction against the robot's facing,
 whether the robot fell at any time, and the time from the first kick cycle to the first cycle
@@ -30,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import behaviors.kick  # noqa: F401  (registers the built-in skills and the kick)
 from behaviors.joint_control import CYCLE_SECONDS
-from benchmarks.get_up import LocalDriver, rise_to_stand
+from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
 from world.field_geometry import BALL_RADIUS
 
@@ -59,13 +59,12 @@ class KickResult:
     ball_side_m: float
 
 
-def stand_up(session: Session, robot_type: int) -> LocalDriver:
+def stand_up(session: Session, robot_type: int) -> LocalAgent:
     """Join a robot at :data:`START`, rise slowly into ``stand`` and hold it half a second."""
-    agent = session.join("Kickers", 1, robot_type, beam=START, settle_cycles=2)
-    return rise_to_stand(LocalDriver(session, agent, robot_type))
+    return LocalAgent.join(session, "Kickers", 1, robot_type, beam=START).rise_to_stand()
 
 
-def place_ball_in_front_of(driver: LocalDriver, foot: str, gap: float) -> tuple[float, float]:
+def place_ball_in_front_of(driver: LocalAgent, foot: str, gap: float) -> tuple[float, float]:
     """Trainer placement of the ball at rest ``gap`` m ahead of ``foot``'s toe; returns (x, y)."""
     robot = driver.session.agents[driver.agent].robot
     name = "lfoot" if foot == "left" else "rfoot"

@@ -26,7 +26,9 @@ from world.robot_state import RobotState
 
 pytest.importorskip("pybullet")
 
-from benchmarks.get_up import FALL_DIRECTIONS, join, knock_over, run_trial
+from benchmarks.get_up import run_trial
+from learning.falls import FALL_DIRECTIONS, knock_over
+from learning.falls import join_at_random_spot as join
 from sim.session import Session, SessionConfig
 
 

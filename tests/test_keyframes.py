@@ -180,19 +180,19 @@ def test_pose_and_keyframe_skills_through_the_manager():
     pytest.importorskip("pybullet")
     import numpy as np
 
-    from benchmarks.get_up import join, robot_is_standing
+    from learning.falls import join_at_random_spot as join
     from sim.session import Session, SessionConfig
 
     session = Session(SessionConfig(seed=5, beam_noise=False))
     try:
         driver = join(session, 0, np.random.default_rng(5))  # runs "pose stand" for 1 s
         assert driver.run_skill("pose", "stand")
-        assert robot_is_standing(session, driver.agent)
+        assert driver.is_standing()
         cycles = 0
         while not driver.run_skill("keyframe", "stand_up_slowly"):
             cycles += 1
         assert cycles + 1 == round(get_sequence("stand_up_slowly").duration / CYCLE_SECONDS)
-        assert robot_is_standing(session, driver.agent)
+        assert driver.is_standing()
         stand = default_poses()["stand"].joints
         worst = max(abs(driver.state.joints_deg[n] - stand[n]) for n in driver.state.joints_deg)
         assert worst < 4.0
