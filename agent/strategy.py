@@ -6,8 +6,11 @@ Positions are in the team frame: x towards the opponent goal, own goal at x = -1
 
 Roles: the player that believes itself closest to the ball (its own estimate against the
 teammates it has seen) is *active* and goes for the ball; the others hold their formation
-places. Skills that later issues add (walk, dribbles, kicks) are picked up when registered;
-until then a player stands.
+places. The active player walks to a point behind the ball on the line to the opponent goal,
+dribbles towards the goal once there and facing it, and shoots with ``basic_kick`` when the
+ball is within kicking range of the goal (:class:`AttackConfig`). A skill that is not
+registered is skipped (the player walks or stands instead), so the strategy runs with whatever
+skills exist.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from world.field_geometry import HALF_LENGTH
 from world.yaml_config import load_yaml_config
 
 #: Play modes in which the rules allow beaming.
@@ -42,10 +46,30 @@ def _default_formation() -> dict[int, tuple[float, float]]:
 
 
 @dataclass(frozen=True)
+class AttackConfig:
+    """How the active player brings the ball to the opponent goal (team frame, metres)."""
+
+    #: shoot with ``basic_kick`` once the ball is this close to the goal centre
+    kick_range_m: float = 7.0
+    #: the approach point lies this far behind the ball on the line goal -> ball
+    behind_ball_m: float = 0.3
+    #: start dribbling within this distance of the approach point ...
+    dribble_start_m: float = 0.25
+    #: ... facing the goal within this angle
+    dribble_align_deg: float = 25.0
+    #: keep dribbling while the ball stays within this distance of the torso
+    dribble_keep_m: float = 0.7
+    #: which dribble gait: "dfdl" or "lfdl"
+    dribble_kind: str = "dfdl"
+
+
+@dataclass(frozen=True)
 class StrategyConfig:
-    """Formation places (unum -> x, y in the team frame); see ``config/team.yaml``."""
+    """Formation places (unum -> x, y in the team frame) and attacking; see
+    ``config/team.yaml``."""
 
     formation: dict[int, tuple[float, float]] = field(default_factory=_default_formation)
+    attack: AttackConfig = field(default_factory=AttackConfig)
 
     @classmethod
     def from_yaml(cls, path: str | Path) -> StrategyConfig:
@@ -75,6 +99,7 @@ class Strategy:
     def __init__(self, config: StrategyConfig | None = None) -> None:
         self.config = config or StrategyConfig()
         self._beamed_in_mode: str | None = None
+        self._dribbling = False
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``) and any beam."""
@@ -118,11 +143,36 @@ class Strategy:
         return (x, y, 0.0)
 
     def _go_for_ball(self, world, behavior) -> None:
-        if "walk" in behavior.skill_names:
-            x, y = world.ball.position
-            behavior.execute("walk", x, y, None)
-        else:
+        """Shoot when in range, dribble when behind the ball facing the goal, else approach."""
+        skills = behavior.skill_names
+        if "walk" not in skills or world.pose is None:
             behavior.execute("pose", "stand")
+            return
+        attack = self.config.attack
+        bx, by = world.ball.position
+        goal_x, goal_y = HALF_LENGTH, 0.0
+        to_goal = math.atan2(goal_y - by, goal_x - bx)
+        if "basic_kick" in skills and math.dist((bx, by), (goal_x, goal_y)) < attack.kick_range_m:
+            self._dribbling = False
+            behavior.execute("basic_kick", goal_x, goal_y, "long")
+            return
+        pose = world.pose
+        approach = (
+            bx - attack.behind_ball_m * math.cos(to_goal),
+            by - attack.behind_ball_m * math.sin(to_goal),
+        )
+        facing = abs(_wrap_deg(pose.heading_deg - math.degrees(to_goal)))
+        if "dribble" in skills:
+            near_ball = math.dist((pose.x, pose.y), (bx, by)) < attack.dribble_keep_m
+            ready = (
+                math.dist((pose.x, pose.y), approach) < attack.dribble_start_m
+                and facing < attack.dribble_align_deg
+            )
+            self._dribbling = ready or (self._dribbling and near_ball)
+            if self._dribbling:
+                behavior.execute("dribble", attack.dribble_kind, math.degrees(to_goal), "left")
+                return
+        behavior.execute("walk", approach[0], approach[1], math.degrees(to_goal))
 
     def _hold_position(self, world, behavior) -> None:
         if "walk" in behavior.skill_names:
@@ -130,3 +180,8 @@ class Strategy:
             behavior.execute("walk", x, y, 0.0)
         else:
             behavior.execute("pose", "stand")
+
+
+def _wrap_deg(angle: float) -> float:
+    """An angle in degrees wrapped to [-180, 180)."""
+    return (angle + 180.0) % 360.0 - 180.0
