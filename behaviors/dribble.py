@@ -1,0 +1,393 @@
+"""The two "dribble long" gaits: DFDL (double-footed) and LFDL (left-footed).
+
+``execute("dribble", kind, direction_deg, foot)`` walks the ball towards ``direction_deg`` (team
+frame, counter-clockwise from the opponent goal's direction). Both gaits are the walk
+(:class:`~behaviors.walk.WalkEngine`) steered so that the ball stays where the gait wants it,
+relative to the torso (:class:`DribbleGait`):
+
+* **DFDL** keeps the ball straight ahead, between the feet's paths: each swinging toe meets
+  the ball's side as it lands, so both feet push it, one step after the other.
+* **LFDL** keeps the ball in front of the left foot and further ahead: only the left toe
+  reaches it, every second step, and pushes it further each time.
+
+The controller (:func:`dribble_velocity`) is a plain feedback law on what the robot perceives
+(ball and own pose from the world model, never the simulator): turn towards the direction,
+step sideways to put the ball on the gait's line, and walk at the gait's speed while the ball
+is within reach (:func:`ball_within_reach`), faster when it rolled ahead, slower when it lies
+off the line. Turning, the robot steps sideways as it turns so that it orbits the ball instead
+of leaving it behind: "walking around the ball's side".
+
+Right-footed versions (``foot="right"``) are never written out: the left-footed controller runs
+on mirrored inputs (ball, heading error, gyro, tilt, joint angles) and its joint speeds and
+odometry are mirrored back (:mod:`behaviors.mirror`). DFDL is symmetric but takes ``foot`` too:
+``"right"`` starts with the right leg.
+
+Each gait has its own :class:`~behaviors.walk.WalkParameters` from ``behaviors/data/dribble.yaml``,
+so tuning the plain walk does not change the dribbles. The phase (``t`` = 0..7 inside a step,
+``left_active``) is :attr:`DribbleSkill.phase`; a caller hands over control at any of the 16
+phases simply by not calling ``dribble`` again.
+
+The 2023 ball-holding rule (the ball within 0.12 m of the torso for more than 5 s is a foul)
+is met by design: both gaits keep the ball ahead of the toes, well beyond 0.12 m from the
+torso centre; ``benchmarks/dribble.py`` measures it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+
+from behaviors.joint_control import JointCommands
+from behaviors.mirror import (
+    mirror_accelerometer,
+    mirror_gyro,
+    mirror_joint_angles,
+    mirror_vector_native,
+)
+from behaviors.skill import Skill, SkillContext
+from behaviors.walk import WalkEngine, WalkParameters, _read_parameters
+from world.nao_model import ROBOT_TYPES
+from world.perception import ForceResistance
+from world.robot_state import RobotState
+
+__all__ = [
+    "DRIBBLE_FILE",
+    "DRIBBLE_KINDS",
+    "FEET",
+    "DribbleGait",
+    "DribbleInputs",
+    "DribbleSkill",
+    "ball_within_reach",
+    "dribble_gait",
+    "dribble_velocity",
+    "dribble_walk_parameters",
+]
+
+DRIBBLE_FILE = Path(__file__).resolve().parent / "data" / "dribble.yaml"
+DRIBBLE_KINDS = ("dfdl", "lfdl")
+FEET = ("left", "right")
+#: Neck pitch while dribbling (deg, negative = down): the ball at the toes lies about 65 deg
+#: below the horizon, outside the 120 deg view cone of a level head; at -45 deg the cone
+#: still reaches 9 deg above the horizon, enough for the flags that localise the robot.
+HEAD_PITCH_DEG = -45.0
+
+
+@dataclass(frozen=True)
+class DribbleGait:
+    """Where one gait keeps the ball and how it steers (metres, m/s, degrees; ego frame of the
+    torso: x forward, y left). See ``behaviors/data/dribble.yaml`` for the tuned values."""
+
+    #: where the ball should lie relative to the torso centre
+    ball_ahead: float = 0.2
+    ball_side: float = 0.0
+    #: the ball is within reach (:func:`ball_within_reach`) while it lies this far ahead ...
+    reach_min_ahead: float = 0.08
+    reach_max_ahead: float = 0.35
+    #: ... and no further than this from the gait's line sideways
+    reach_side: float = 0.07
+    #: forward speed while the ball is within reach and on the line
+    speed: float = 0.4
+    #: forward speed bounds: slowest (may be negative) and fastest, when catching up
+    min_speed: float = 0.0
+    max_speed: float = 0.6
+    #: m/s of extra forward speed per metre the ball lies beyond ball_ahead
+    ahead_gain: float = 2.0
+    #: m/s of sideways speed per metre the ball lies off the line
+    side_gain: float = 3.0
+    max_side_speed: float = 0.25
+    #: deg/s of turn per degree of heading error, and the largest turn rate
+    turn_gain: float = 2.0
+    max_turn_deg: float = 60.0
+    #: the forward speed shrinks to nothing as the ball lies this far off the line ...
+    side_slowdown: float = 0.1
+    #: ... or as the heading error reaches this many degrees
+    heading_slowdown_deg: float = 60.0
+
+
+@dataclass(frozen=True, slots=True)
+class DribbleInputs:
+    """What the controller needs, in the torso's ego frame (x forward, y left)."""
+
+    #: ball position relative to the torso (m)
+    ball_x: float
+    ball_y: float
+    #: ball velocity (m/s)
+    ball_vx: float
+    ball_vy: float
+    #: direction to dribble minus own heading (deg, + = the direction lies to the left)
+    heading_error_deg: float
+
+    def mirrored(self) -> DribbleInputs:
+        """The same situation seen in the mirror (the sagittal plane): lateral values negate."""
+        return DribbleInputs(
+            self.ball_x, -self.ball_y, self.ball_vx, -self.ball_vy, -self.heading_error_deg
+        )
+
+
+def ball_within_reach(inputs: DribbleInputs, gait: DribbleGait) -> bool:
+    """The ball is within reach when the gait's next steps can touch it: between
+    ``reach_min_ahead`` and ``reach_max_ahead`` in front of the torso centre and no more than
+    ``reach_side`` off the gait's line (``ball_side``) sideways. The robot only speeds up
+    while this holds."""
+    ahead_ok = gait.reach_min_ahead <= inputs.ball_x <= gait.reach_max_ahead
+    return ahead_ok and abs(inputs.ball_y - gait.ball_side) <= gait.reach_side
+
+
+def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, float, float]:
+    """The walk command (vx m/s, vy m/s, vturn deg/s) that keeps the ball on the gait's line.
+
+    Turn: proportional to the heading error. Sideways: proportional to the ball's offset from
+    the line, plus the orbit term ``-turn * ball_x`` (turning left swings a ball ahead to the
+    right; stepping right by as much keeps it in front). Forward: the gait's speed plus a
+    share of how far the ball rolled beyond ``ball_ahead``, scaled down as the ball drifts off
+    the line or the heading is wrong; once out of reach only the catch-up term remains.
+    """
+    turn_deg = _clip(gait.turn_gain * inputs.heading_error_deg, gait.max_turn_deg)
+    side_error = inputs.ball_y - gait.ball_side
+    orbit = -math.radians(turn_deg) * max(inputs.ball_x, 0.0)
+    vy = _clip(gait.side_gain * side_error + orbit, gait.max_side_speed)
+    aligned = max(0.0, 1.0 - abs(side_error) / gait.side_slowdown)
+    facing = max(0.0, 1.0 - abs(inputs.heading_error_deg) / gait.heading_slowdown_deg)
+    base = gait.speed if ball_within_reach(inputs, gait) else 0.0
+    catch_up = gait.ahead_gain * (inputs.ball_x - gait.ball_ahead)
+    if inputs.ball_x < 0.0:  # the ball is behind: never walk on over it
+        catch_up = gait.min_speed
+    vx = min(max((base + catch_up) * aligned * facing, gait.min_speed), gait.max_speed)
+    return vx, vy, turn_deg
+
+
+def _clip(value: float, limit: float) -> float:
+    return min(max(value, -limit), limit)
+
+
+def _wrap_deg(angle: float) -> float:
+    return (angle + 180.0) % 360.0 - 180.0
+
+
+# --------------------------------------------------------------------------------------------
+# Parameters
+# --------------------------------------------------------------------------------------------
+
+
+def _check_kind(kind: str) -> None:
+    if kind not in DRIBBLE_KINDS:
+        raise ValueError(f"dribble kind must be one of {DRIBBLE_KINDS}, got {kind!r}")
+
+
+def _check_type(robot_type: int) -> None:
+    if robot_type not in ROBOT_TYPES:
+        raise ValueError(f"robot type must be one of {ROBOT_TYPES}, got {robot_type!r}")
+
+
+@cache
+def _load(path: Path) -> dict[str, Any]:
+    return yaml.safe_load(path.read_text()) or {}
+
+
+def _typed_block(data: dict[str, Any], robot_type: int) -> dict[str, Any]:
+    """A mapping's ``default`` block overridden by its ``type<N>`` block (one level deep for
+    a ``step`` sub-mapping)."""
+    base = dict(data.get("default") or {})
+    own = dict(data.get(f"type{robot_type}") or {})
+    merged = {**base, **own}
+    if "step" in base or "step" in own:
+        merged["step"] = {**(base.get("step") or {}), **(own.get("step") or {})}
+    return merged
+
+
+@cache
+def dribble_gait(kind: str, robot_type: int, path: Path = DRIBBLE_FILE) -> DribbleGait:
+    """The controller settings of gait ``kind`` for ``robot_type`` (``<kind>.controller``)."""
+    _check_kind(kind)
+    _check_type(robot_type)
+    block = (_load(path).get(kind) or {}).get("controller") or {}
+    values = _typed_block(block, robot_type)
+    known = {f.name for f in fields(DribbleGait)}
+    unknown = set(values) - known
+    if unknown:
+        raise ValueError(f"{path} ({kind}, type{robot_type}): unknown setting(s) {sorted(unknown)}")
+    return DribbleGait(**{k: float(v) for k, v in values.items()})
+
+
+@cache
+def dribble_walk_parameters(
+    kind: str, robot_type: int, path: Path = DRIBBLE_FILE
+) -> WalkParameters:
+    """The walk of gait ``kind`` for ``robot_type``: the file's shared ``walk`` block, then the
+    gait's own ``walk`` block on top (each with ``default`` and ``type<N>`` parts)."""
+    _check_kind(kind)
+    _check_type(robot_type)
+    data = _load(path)
+    shared = _typed_block(data.get("walk") or {}, robot_type)
+    own = _typed_block((data.get(kind) or {}).get("walk") or {}, robot_type)
+    merged = {**shared, **own}
+    merged["step"] = {**(shared.get("step") or {}), **(own.get("step") or {})}
+    return _read_parameters(merged, f"{path} ({kind}, type{robot_type})")
+
+
+# --------------------------------------------------------------------------------------------
+# Mirroring the walk's inputs and outputs
+# --------------------------------------------------------------------------------------------
+
+
+class _MirroredOdometry:
+    """Passes the mirrored walk's odometry to the real localiser, mirrored back."""
+
+    def __init__(self, localizer: Any) -> None:
+        self._localizer = localizer
+
+    def add_odometry(self, forward: float, left: float, turn_deg: float) -> None:
+        self._localizer.add_odometry(forward, -left, -turn_deg)
+
+
+@dataclass
+class _MirroredWorld:
+    """The part of a world model the walk engine reads, as the mirrored robot would see it."""
+
+    robot: RobotState
+    localizer: _MirroredOdometry | None
+
+
+def _mirrored_robot(robot: RobotState) -> RobotState:
+    """The robot's body readings reflected about its sagittal plane."""
+    mirrored = RobotState(robot.robot_type)
+    mirrored.joints_deg = mirror_joint_angles(robot.joints_deg)
+    mirrored.gyro_deg_s = mirror_gyro(robot.gyro_deg_s)
+    mirrored.accelerometer = mirror_accelerometer(robot.accelerometer)
+    mirrored.up = mirror_vector_native(robot.up)
+    mirrored.foot_pressure = {
+        _swap_side(name): ForceResistance(
+            _swap_side(name),
+            tuple(mirror_vector_native(fr.contact)),
+            tuple(mirror_vector_native(fr.force)),
+        )
+        for name, fr in robot.foot_pressure.items()
+    }
+    return mirrored
+
+
+def _swap_side(name: str) -> str:
+    return {"l": "r", "r": "l"}[name[0]] + name[1:]
+
+
+# --------------------------------------------------------------------------------------------
+# The skill
+# --------------------------------------------------------------------------------------------
+
+
+class DribbleSkill(Skill):
+    """Dribble the ball towards ``direction_deg`` (team frame) with gait ``kind`` (``"dfdl"``
+    or ``"lfdl"``) on the ``foot`` side (``"left"``, or ``"right"``: the mirror image). Never
+    finishes: the caller decides when to stop (at any phase, see :attr:`phase`)."""
+
+    name = "dribble"
+
+    def __init__(self) -> None:
+        self._engine: WalkEngine | None = None
+        self._key: tuple[str, int] | None = None
+        self._mirror = False
+        #: the last inputs and command, for benchmarks and debugging (gait's own frame)
+        self.last_inputs: DribbleInputs | None = None
+        self.last_command: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def reset(self) -> None:
+        if self._engine is not None:
+            self._engine.reset()
+        self.last_inputs = None
+        self.last_command = (0.0, 0.0, 0.0)
+
+    def validate(self, kind: str, direction_deg: float, foot: str = "left") -> None:
+        _check_kind(kind)
+        if foot not in FEET:
+            raise ValueError(f"foot must be one of {FEET}, got {foot!r}")
+        if not math.isfinite(direction_deg):
+            raise ValueError("direction_deg must be finite")
+
+    # ------------------------------------------------------------------ state
+    @property
+    def phase(self) -> tuple[int, bool]:
+        """(t, left_active) of the real robot: t = 0..7 inside the step, left_active True
+        while the LEFT leg swings; (-1, False) before the first step."""
+        t, left_active = self.gait_phase
+        if t < 0 or not self._mirror:
+            return t, left_active
+        return t, not left_active
+
+    @property
+    def gait_phase(self) -> tuple[int, bool]:
+        """The phase in the gait's own (left-footed) frame: for a right-footed dribble,
+        ``left_active`` names the leg that plays the left-footed gait's left leg."""
+        if self._engine is None:
+            return (-1, False)
+        return self._engine.phase
+
+    def engine_for(self, kind: str, robot_type: int) -> WalkEngine:
+        """The walk engine of ``kind`` (a new one when the kind or the robot type changes)."""
+        if self._engine is None or self._key != (kind, robot_type):
+            self._engine = WalkEngine(robot_type, dribble_walk_parameters(kind, robot_type))
+            self._key = (kind, robot_type)
+        return self._engine
+
+    # ------------------------------------------------------------------ one cycle
+    def step(
+        self, context: SkillContext, kind: str, direction_deg: float, foot: str = "left"
+    ) -> bool:
+        robot_type = context.world.robot.robot_type
+        engine = self.engine_for(kind, robot_type)
+        self._mirror = foot == "right"
+        gait = dribble_gait(kind, robot_type)
+        inputs = _perceived_inputs(context, direction_deg)
+        if inputs is None:  # lost the ball or the own pose: tread on the spot until seen
+            command = (0.0, 0.0, 0.0)
+        else:
+            own = inputs.mirrored() if self._mirror else inputs
+            command = dribble_velocity(own, gait)
+            self.last_inputs = own
+        self.last_command = command
+        if self._mirror:
+            self._step_mirrored(context, engine, command)
+        else:
+            engine.step(context, *command)
+        context.commands.set_targets({"hj1": 0.0, "hj2": HEAD_PITCH_DEG})
+        return False
+
+    def _step_mirrored(
+        self, context: SkillContext, engine: WalkEngine, command: tuple[float, float, float]
+    ) -> None:
+        """One walk cycle of the mirror image: mirrored body readings in, speeds mirrored out."""
+        world = context.world
+        localizer = getattr(world, "localizer", None)
+        mirrored_world = _MirroredWorld(
+            _mirrored_robot(world.robot),
+            None if localizer is None else _MirroredOdometry(localizer),
+        )
+        scratch = JointCommands(world.robot.robot_type)
+        engine.step(replace(context, world=mirrored_world, commands=scratch), *command)
+        context.commands.set_speeds(mirror_joint_angles(scratch.speeds()))
+
+
+def _perceived_inputs(context: SkillContext, direction_deg: float) -> DribbleInputs | None:
+    """Ball position and velocity in the ego frame and the heading error, from the world
+    model; None while the ball or the robot's own pose is unknown."""
+    world = context.world
+    pose = world.pose
+    ball = world.ball_relative_ego
+    if pose is None or ball is None:
+        return None
+    h = math.radians(pose.heading_deg)
+    vx, vy = world.ball.velocity
+    c, s = math.cos(h), math.sin(h)
+    velocity = np.array([c * vx + s * vy, -s * vx + c * vy])
+    return DribbleInputs(
+        float(ball[0]),
+        float(ball[1]),
+        float(velocity[0]),
+        float(velocity[1]),
+        _wrap_deg(direction_deg - pose.heading_deg),
+    )
