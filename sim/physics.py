@@ -4,10 +4,13 @@ Each :class:`PhysicsWorld` owns its own ``pybullet.DIRECT`` client, so many worl
 live side by side in one process without sharing state.
 
 Save and restore (:meth:`PhysicsWorld.save_state`, :meth:`PhysicsWorld.restore_state`) must let
-a restored world continue bit for bit like the original. Bullet's own ``saveState`` keeps
-positions and velocities but not what the solver carries from step to step: the persistent
-contact manifolds (which contact points exist, their cached impulses) and the motor targets.
-The world therefore
+a restored world continue bit for bit like the original. The world captures every moving body's
+state itself (base pose and velocity, joint positions and velocities: :class:`BodyState`)
+rather than with Bullet's ``saveState``, whose ``restoreState`` looks bodies up by ids that go
+wrong once another client in the process has created bodies, and whose snapshots are never
+freed. Neither keeps what the solver carries from step to step: the persistent contact
+manifolds (which contact points exist, their cached impulses) and the motor targets. The world
+therefore
 
 * sorts overlapping pairs (``deterministicOverlappingPairs``) so pair order never depends on
   history, and switches warm starting off (``warmStartingFactor = 0``): cached impulses then
@@ -16,7 +19,10 @@ The world therefore
   self-collision pairs inside a robot included, so the original world continues from exactly
   the state that a restore reproduces;
 * keeps Python-side state (motor targets, sensor memories) of registered holders such as
-  :class:`sim.robot.SimRobot` in the snapshot.
+  :class:`sim.robot.SimRobot` in the snapshot;
+* writes the captured state straight back into the live world on save: reading a pose and
+  setting it again is not exact in the last bit (Bullet converts between quaternion and
+  matrix), so the original continues from the very numbers a restore will set.
 
 The price: one collision pass per save/restore, and no warm starting (a few more solver
 iterations would compensate; the fidelity benchmark is measured with this setting).
@@ -53,11 +59,27 @@ class StateHolder(Protocol):
     def restore_python_state(self, state: Any) -> None: ...
 
 
+Vec = tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class BodyState:
+    """The dynamic state of one moving body: what Bullet integrates from step to step."""
+
+    body_id: int
+    position: Vec
+    orientation: Vec
+    linear_velocity: Vec
+    angular_velocity: Vec
+    joint_positions: tuple[float, ...]
+    joint_velocities: tuple[float, ...]
+
+
 @dataclass(frozen=True)
 class WorldSnapshot:
-    """A saved world: Bullet's in-memory state id plus the holders' Python states."""
+    """A saved world: every moving body's state plus the holders' Python states."""
 
-    bullet_state_id: int
+    bodies: tuple[BodyState, ...]
     holders: tuple[tuple[int, Any], ...]
 
 
@@ -108,21 +130,74 @@ class PhysicsWorld:
         self._holders.pop(id(holder), None)
 
     def save_state(self) -> WorldSnapshot:
-        """Snapshot the world. The live world is normalised too (contact caches dropped), so it
-        continues exactly as a world restored from this snapshot will."""
-        self._forget_contacts()
-        state_id = pybullet.saveState(physicsClientId=self.client)
+        """Snapshot the world. The live world is normalised too (body states written back,
+        contact caches dropped), so it continues exactly as a world restored from this
+        snapshot will."""
+        bodies = tuple(self._body_state(body) for body in self._moving_bodies())
         holders = tuple((key, h.python_state()) for key, h in self._holders.items())
-        return WorldSnapshot(state_id, holders)
+        for body in bodies:
+            self._set_body_state(body)
+        self._forget_contacts()
+        return WorldSnapshot(bodies, holders)
 
     def restore_state(self, state: WorldSnapshot) -> None:
         """Return to ``state`` (taken from this world, with the same bodies present)."""
-        pybullet.restoreState(stateId=state.bullet_state_id, physicsClientId=self.client)
+        present = set(self._moving_bodies())
+        missing = [b.body_id for b in state.bodies if b.body_id not in present]
+        if missing:
+            raise ValueError(f"bodies {missing} of the snapshot are no longer in the world")
+        for body in state.bodies:
+            self._set_body_state(body)
         for key, holder_state in state.holders:
             holder = self._holders.get(key)
             if holder is not None:
                 holder.restore_python_state(holder_state)
         self._forget_contacts()
+
+    def _moving_bodies(self) -> list[int]:
+        """Ids of the bodies that move (static ones have mass 0 and no joints)."""
+        cid = self.client
+        ids = [
+            pybullet.getBodyUniqueId(i, physicsClientId=cid)
+            for i in range(pybullet.getNumBodies(physicsClientId=cid))
+        ]
+        return [body for body in ids if not self._is_static(body)]
+
+    def _is_static(self, body: int) -> bool:
+        cid = self.client
+        return (
+            pybullet.getNumJoints(body, physicsClientId=cid) == 0
+            and pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)[0] == 0.0
+        )
+
+    def _body_state(self, body: int) -> BodyState:
+        cid = self.client
+        position, orientation = pybullet.getBasePositionAndOrientation(body, physicsClientId=cid)
+        linear, angular = pybullet.getBaseVelocity(body, physicsClientId=cid)
+        joints = range(pybullet.getNumJoints(body, physicsClientId=cid))
+        states = pybullet.getJointStates(body, joints, physicsClientId=cid) if joints else []
+        return BodyState(
+            body,
+            tuple(position),
+            tuple(orientation),
+            tuple(linear),
+            tuple(angular),
+            tuple(s[0] for s in states),
+            tuple(s[1] for s in states),
+        )
+
+    def _set_body_state(self, state: BodyState) -> None:
+        cid, body = self.client, state.body_id
+        pybullet.resetBasePositionAndOrientation(
+            body, state.position, state.orientation, physicsClientId=cid
+        )
+        pybullet.resetBaseVelocity(
+            body, state.linear_velocity, state.angular_velocity, physicsClientId=cid
+        )
+        for joint, (q, qdot) in enumerate(
+            zip(state.joint_positions, state.joint_velocities, strict=True)
+        ):
+            pybullet.resetJointState(body, joint, q, qdot, physicsClientId=cid)
 
     def _forget_contacts(self) -> None:
         """Empty every persistent contact manifold, leaving no trace of the world's history.
@@ -135,12 +210,8 @@ class PhysicsWorld:
         the moving bodies all the same.
         """
         cid = self.client
-        for i in range(pybullet.getNumBodies(physicsClientId=cid)):
-            body = pybullet.getBodyUniqueId(i, physicsClientId=cid)
-            links = pybullet.getNumJoints(body, physicsClientId=cid)
-            if links == 0 and pybullet.getDynamicsInfo(body, -1, physicsClientId=cid)[0] == 0.0:
-                continue  # static: keeps its own filter
-            for link in range(-1, links):
+        for body in self._moving_bodies():  # static bodies keep their own filter
+            for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
                 pybullet.setCollisionFilterGroupMask(
                     body, link, DYNAMIC_FILTER_GROUP, ALL_FILTER_MASK, physicsClientId=cid
                 )
