@@ -18,6 +18,7 @@ Sequences are looked up per robot type first (``get_up_front_type3``), then by t
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 from behaviors.joint_control import CYCLE_SECONDS
@@ -52,9 +53,12 @@ def robot_stands(state: RobotState) -> bool:
     )
 
 
-def sequence_for(base: str, robot_type: int) -> KeyframeSequence:
-    """The robot type's own version of a sequence if there is one, else the common one."""
-    sequences = default_sequences()
+def sequence_for(
+    base: str, robot_type: int, sequences: Mapping[str, KeyframeSequence] | None = None
+) -> KeyframeSequence:
+    """The robot type's own version of a sequence if there is one, else the common one
+    (from ``sequences``, the packaged ones by default)."""
+    sequences = default_sequences() if sequences is None else sequences
     return sequences.get(f"{base}_type{robot_type}") or sequences[base]
 
 
@@ -73,7 +77,12 @@ class GetUpSkill(Skill):
 
     name = "get_up"
 
-    def __init__(self) -> None:
+    def __init__(self, sequences: Mapping[str, KeyframeSequence] | None = None) -> None:
+        #: where the get-up sequences are looked up: the packaged ones unless a search
+        #: (``learning/get_up_search.py``) plays candidates through the real skill
+        self.sequences: Mapping[str, KeyframeSequence] = (
+            default_sequences() if sequences is None else sequences
+        )
         self._attempt = _Attempt()
         self.attempts = 0
         #: the side the robot was found lying on when the current sequence started
@@ -116,12 +125,12 @@ class GetUpSkill(Skill):
         self.lying_on = side
         self.attempts += 1
         if side in ("left", "right"):
-            sequence = sequence_for(ROLL_FROM_LEFT, state.robot_type)
+            sequence = sequence_for(ROLL_FROM_LEFT, state.robot_type, self.sequences)
             if side == "right":
                 sequence = mirrored(sequence)
             self._attempt = _Attempt(KeyframePlayer(sequence, state.robot_type), rolling=True)
         else:
-            sequence = sequence_for(f"get_up_{side}", state.robot_type)
+            sequence = sequence_for(f"get_up_{side}", state.robot_type, self.sequences)
             self._attempt = _Attempt(KeyframePlayer(sequence, state.robot_type))
 
     def _play(self, context: SkillContext, state: RobotState) -> bool:

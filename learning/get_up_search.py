@@ -1,0 +1,293 @@
+"""Coordinate search for get-up keyframes, scored on many cached falls at once.
+
+Why a search: the get-up sequences in ``behaviors/data/get_up.yaml`` depend on friction,
+masses and the motor model of this simulator, and one hand-tuned angle that works on one fall
+fails on the next. The search scores a candidate on a bank of lying states made once by
+physics (:func:`learning.falls.knock_over`), each saved with ``Session.save_state`` together
+with the agent's world model, so a candidate trial is only the seconds of the get-up itself,
+played through the real ``get_up`` skill (perception bytes in, effector bytes out).
+
+Score of one trial: 1 for standing within the time limit and still standing half a second
+later (the benchmark's rule), plus a margin that rewards getting closer (peak and final torso
+height times uprightness), so that the search can climb before the first success.
+
+Parameters: the first frames' joint targets (left and right moved together as mirror twins)
+and frame durations. One parameter at a time is moved by +-step; a move is kept if the total
+score over the bank rises; the steps halve after a pass without gain.
+
+Run (one robot type per process: pybullet's restoreState is unreliable once a second session
+in the same process has created bodies)::
+
+    nice -n 5 .venv/bin/python learning/get_up_search.py --sequence get_up_front \\
+        --type 0 --direction front --falls 12 --passes 2 --write get_up_front
+
+``--write NAME`` stores the best sequence under NAME in ``behaviors/data/get_up.yaml``
+(``get_up_front_type3`` for a per-type variant).
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import sys
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from behaviors.get_up import GetUpSkill
+from behaviors.keyframes import KeyframeSequence, default_sequences, parse_sequences
+from behaviors.manager import Behavior
+from behaviors.mirror import MIRROR_TABLE
+from behaviors.poses import DATA_DIR
+from learning.falls import join_at_random_spot, knock_over
+from learning.local_agent import LocalAgent
+from sim.session import Session, SessionConfig, SessionSnapshot
+from world.nao_model import robot_spec
+from world.world_model import WorldModel
+
+GET_UP_FILE = DATA_DIR / "get_up.yaml"
+#: Trial length and the half second the robot must still stand afterwards (as the benchmark).
+TIME_LIMIT_S = 4.0
+STILL_STANDING_CYCLES = 25
+#: Weight of the closeness margin against one success.
+MARGIN_WEIGHT = 0.25
+_JOINT_LIMITS = {j.perceptor: (j.min_deg, j.max_deg) for j in robot_spec(4).joints}
+
+
+@dataclass
+class LyingState:
+    """One fall's end: the simulator state and the agent's world model at that moment."""
+
+    snapshot: SessionSnapshot
+    world: WorldModel
+    lying_on: str | None
+
+
+@dataclass
+class FallBank:
+    """Falls of one robot type in one session, replayed by :meth:`trial`."""
+
+    session: Session
+    agent: int
+    robot_type: int
+    team_name: str
+    states: list[LyingState]
+
+    def trial(self, index: int, sequences: Mapping[str, KeyframeSequence]) -> float:
+        """Play ``get_up`` from lying state ``index`` with ``sequences``; the trial's score."""
+        state = self.states[index]
+        self.session.restore_state(state.snapshot)
+        agent = LocalAgent(self.session, self.agent, self.robot_type, self.team_name)
+        agent.world = copy.deepcopy(state.world)
+        agent.behavior = Behavior(agent.world, self.robot_type)
+        skill = agent.behavior.skill("get_up")
+        assert isinstance(skill, GetUpSkill)
+        skill.sequences = sequences
+        peak = 0.0
+        finished = False
+        for _ in range(round(TIME_LIMIT_S / 0.02)):
+            finished = agent.run("get_up")
+            peak = max(peak, closeness(agent))
+            if finished:
+                break
+        success = finished and agent.is_standing()
+        if success:
+            for _ in range(STILL_STANDING_CYCLES):
+                agent.run("pose", "stand")
+            success = agent.is_standing()
+        return float(success) + MARGIN_WEIGHT * (peak + closeness(agent)) / 2
+
+
+def closeness(agent: LocalAgent) -> float:
+    """0..1: torso height as a fraction of standing height times how upright it is."""
+    robot = agent.robot
+    height = min(1.0, float(robot.torso_position()[2]) / robot.spec.sole_height())
+    return height * max(0.0, float(robot.torso_up()[2]))
+
+
+def make_bank(
+    robot_type: int,
+    directions: list[str],
+    count: int,
+    seed: int,
+    lying_on: tuple[str, ...] | None = None,
+) -> FallBank:
+    """``count`` falls (directions taken in turn) from one standing start, each saved; with
+    ``lying_on`` only falls that end on one of those sides are kept."""
+    rng = np.random.default_rng(seed)
+    session = Session(SessionConfig(seed=seed, beam_noise=False))
+    driver = join_at_random_spot(session, robot_type, rng)
+    standing = session.save_state()
+    standing_world = copy.deepcopy(driver.world)
+    states = []
+    attempts = 0
+    while len(states) < count and attempts < 4 * count:
+        direction = directions[attempts % len(directions)]
+        attempts += 1
+        session.restore_state(standing)
+        driver = LocalAgent(session, driver.agent, robot_type, "Fallers")
+        driver.world = copy.deepcopy(standing_world)
+        driver.behavior = Behavior(driver.world, robot_type)
+        if not knock_over(driver, direction, rng):
+            continue
+        driver.perceive()
+        if lying_on is not None and driver.state.lying_on not in lying_on:
+            continue
+        states.append(
+            LyingState(session.save_state(), copy.deepcopy(driver.world), driver.state.lying_on)
+        )
+    return FallBank(session, driver.agent, robot_type, "Fallers", states)
+
+
+# ------------------------------------------------------------------------------ parameters
+@dataclass(frozen=True)
+class Parameter:
+    """One searchable number: a joint target of a frame (with its mirror twin) or a duration."""
+
+    frame: int
+    key: str  # a left joint name ("llj3", "laj1") or "duration"
+    step: float
+
+    def get(self, entry: dict[str, Any]) -> float:
+        frame = entry["frames"][self.frame]
+        return float(frame["duration"] if self.key == "duration" else frame["joints"][self.key])
+
+    def set(self, entry: dict[str, Any], value: float) -> None:
+        frame = entry["frames"][self.frame]
+        if self.key == "duration":
+            frame["duration"] = round(max(0.06, min(1.2, value)), 2)
+            return
+        low, high = _JOINT_LIMITS[self.key]
+        value = round(max(low, min(high, value)), 1)
+        frame["joints"][self.key] = value
+        twin = MIRROR_TABLE[self.key]
+        if twin.twin in frame["joints"]:
+            frame["joints"][twin.twin] = round(twin.sign * value, 1) + 0.0
+
+
+def parameters(entry: dict[str, Any], frames: int, joint_step: float, time_step: float):
+    """The searchable numbers of the first ``frames`` frames of a raw sequence entry."""
+    out = []
+    for index, frame in enumerate(entry["frames"][:frames]):
+        out.append(Parameter(index, "duration", time_step))
+        for name in frame.get("joints", {}):
+            if name.startswith("l") or name.startswith("h"):
+                out.append(Parameter(index, name, joint_step))
+    return out
+
+
+def candidate_sequences(name: str, entry: dict[str, Any]) -> dict[str, KeyframeSequence]:
+    """The packaged sequences with ``name`` replaced by ``entry``."""
+    sequences = dict(default_sequences())
+    sequences.update(parse_sequences({name: entry}, "candidate"))
+    return sequences
+
+
+def score(bank: FallBank, name: str, entry: dict[str, Any]) -> tuple[float, int]:
+    """Total score and number of successes of a candidate over the whole bank."""
+    sequences = candidate_sequences(name, entry)
+    results = [bank.trial(i, sequences) for i in range(len(bank.states))]
+    return sum(results), sum(r >= 1.0 for r in results)
+
+
+def coordinate_search(
+    bank: FallBank,
+    name: str,
+    entry: dict[str, Any],
+    frames: int,
+    passes: int,
+    budget_s: float,
+    joint_step: float = 15.0,
+    time_step: float = 0.08,
+) -> dict[str, Any]:
+    """Improve ``entry`` one parameter at a time; returns the best entry found."""
+    best = copy.deepcopy(entry)
+    best_score, best_up = score(bank, name, best)
+    print(f"start: score {best_score:.2f}, up {best_up}/{len(bank.states)}", flush=True)
+    started = time.monotonic()
+    for pass_index in range(passes):
+        improved = False
+        for parameter in parameters(best, frames, joint_step, time_step):
+            for sign in (1.0, -1.0):
+                if time.monotonic() - started > budget_s:
+                    return best
+                trial = copy.deepcopy(best)
+                parameter.set(trial, parameter.get(best) + sign * parameter.step)
+                if trial == best:
+                    continue
+                value, up = score(bank, name, trial)
+                if value > best_score + 1e-3:
+                    best, best_score, best_up, improved = trial, value, up, True
+                    print(
+                        f"pass {pass_index} frame {parameter.frame} {parameter.key} "
+                        f"-> {parameter.get(best)}: score {value:.2f}, up {up}/{len(bank.states)}",
+                        flush=True,
+                    )
+                    break
+        if not improved:
+            joint_step, time_step = joint_step / 2, time_step / 2
+    return best
+
+
+# ------------------------------------------------------------------------------ yaml output
+def raw_entries(path: Path = GET_UP_FILE) -> dict[str, Any]:
+    return yaml.safe_load(path.read_text())
+
+
+def dump_entries(entries: Mapping[str, Any]) -> str:
+    """The get-up file's layout: one flow-style line per frame, a blank line between entries."""
+    blocks = []
+    for name, entry in entries.items():
+        lines = [f"{name}:", f"  description: {entry['description']}", "  frames:"]
+        for frame in entry["frames"]:
+            text = yaml.safe_dump(frame, default_flow_style=True, sort_keys=False, width=10_000)
+            lines.append(f"    - {text.strip()}")
+        blocks.append("\n".join(lines))
+    return "\n\n".join(blocks) + "\n"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--sequence", required=True, help="raw entry to start from")
+    parser.add_argument("--type", type=int, default=0)
+    parser.add_argument("--direction", default="front", help="fall directions, comma-separated")
+    parser.add_argument("--falls", type=int, default=12)
+    parser.add_argument("--lying-on", help="keep only falls ending on these sides (a,b)")
+    parser.add_argument("--seed", type=int, default=100)
+    parser.add_argument("--frames", type=int, default=3, help="search the first N frames")
+    parser.add_argument("--passes", type=int, default=2)
+    parser.add_argument("--budget-s", type=float, default=600.0)
+    parser.add_argument("--joint-step", type=float, default=15.0)
+    parser.add_argument("--write", help="store the result under this name in get_up.yaml")
+    args = parser.parse_args()
+    entries = raw_entries()
+    lying_on = tuple(args.lying_on.split(",")) if args.lying_on else None
+    bank = make_bank(args.type, args.direction.split(","), args.falls, args.seed, lying_on)
+    sides = [s.lying_on for s in bank.states]
+    print(f"bank: {len(sides)} falls, lying on {sides}", flush=True)
+    name = args.write or args.sequence
+    best = coordinate_search(
+        bank,
+        name,
+        copy.deepcopy(entries[args.sequence]),
+        args.frames,
+        args.passes,
+        args.budget_s,
+        args.joint_step,
+    )
+    print(yaml.safe_dump({name: best}, default_flow_style=None, sort_keys=False, width=10_000))
+    if args.write:
+        entries[args.write] = best
+        GET_UP_FILE.write_text(dump_entries(entries))
+    bank.session.close()
+
+
+if __name__ == "__main__":
+    main()
