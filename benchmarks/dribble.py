@@ -1,0 +1,200 @@
+"""Dribble benchmark: DFDL and LFDL speed, ball losses, falls, ball distance per phase, holding.
+
+Every run starts as the kick-in-motion episodes do: the robot stands 0.3 m behind the ball at
+the field centre, facing the direction to dribble, in PlayOn; then ``dribble(kind, direction,
+foot)`` runs until the ball has travelled ``distance`` metres along the direction (or time runs
+out). Everything measured is ground truth from the simulator; the skill itself sees only its
+perceptions (``learning.local_agent.LocalAgent``).
+
+Definitions (the report's figures mean exactly this):
+
+* speed: ``distance`` divided by the seconds the ball took to get there (0 if it never did);
+* a ball loss: the ball leaves the robot's reach, i.e. gets more than ``LOST_DISTANCE`` from
+  the torso (along the ground) or falls behind the torso; one loss per time it leaves;
+* a fall: the robot's torso tilts beyond 60 degrees (the run stops there);
+* ball distance per phase: torso-to-ball distance along the ground, median over the cycles of
+  each phase ``(t, left_active)``;
+* holding: the 2023 rule's clock (ball within 0.12 m of the torso, reset after 0.5 s free);
+  ``holding_fouls`` counts the referee's calls (play mode leaving PlayOn), ``max_held_s`` the
+  longest the clock ran.
+
+``python -m benchmarks.dribble`` prints ``name: value`` lines for type 0 (``--types`` for more).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+from collections import defaultdict
+from dataclasses import dataclass, field
+
+from learning.local_agent import LocalAgent
+from sim.session import Session, SessionConfig
+from world.nao_model import ROBOT_TYPES
+
+#: Cycle length (s).
+CYCLE = 0.02
+#: The robot starts this far behind the ball (m), as the kick-in-motion episodes do.
+START_BEHIND = 0.3
+#: The ball counts as lost beyond this distance from the torso (m) ...
+LOST_DISTANCE = 0.6
+#: ... and counts as within reach again below this one (hysteresis).
+REGAINED_DISTANCE = 0.45
+#: The 2023 holding rule's radius (m) and reset time (s).
+HOLD_RADIUS = 0.12
+HOLD_RESET_S = 0.5
+BALL_Z = 0.042
+
+
+@dataclass
+class DribbleRun:
+    """What one dribble did (ground truth)."""
+
+    kind: str
+    robot_type: int
+    foot: str
+    direction_deg: float
+    seconds: float = 0.0
+    distance: float = 0.0  # metres the ball travelled along the direction
+    reached: bool = False
+    fell: bool = False
+    ball_losses: int = 0
+    holding_fouls: int = 0
+    max_held_s: float = 0.0
+    #: (t, left_active) -> torso-ball distances (m)
+    phase_distances: dict[tuple[int, bool], list[float]] = field(
+        default_factory=lambda: defaultdict(list)
+    )
+
+    @property
+    def speed(self) -> float:
+        """Ball speed along the direction (m/s) over the run; 0 unless it reached the goal."""
+        return self.distance / self.seconds if self.reached and self.seconds > 0 else 0.0
+
+    def phase_medians(self) -> dict[tuple[int, bool], float]:
+        return {k: statistics.median(v) for k, v in sorted(self.phase_distances.items()) if v}
+
+
+def start_dribble_episode(
+    robot_type: int, direction_deg: float = 0.0, seed: int = 0
+) -> tuple[Session, LocalAgent]:
+    """A session with one robot standing ``START_BEHIND`` m behind the ball at the field
+    centre, facing ``direction_deg``, in PlayOn: the kick-in-motion episode's start."""
+    session = Session(SessionConfig(seed=seed, beam_noise=False))
+    h = math.radians(direction_deg)
+    beam = (-START_BEHIND * math.cos(h), -START_BEHIND * math.sin(h), direction_deg)
+    agent = LocalAgent.join(session, "Local", 1, robot_type, beam=beam)
+    agent.trainer("(playMode PlayOn)")
+    agent.rise_to_stand()
+    agent.trainer(f"(ball (pos 0 0 {BALL_Z}) (vel 0 0 0))")
+    return session, agent
+
+
+class _Holding:
+    """The holding rule's clock for one player (ground truth)."""
+
+    def __init__(self) -> None:
+        self.held = 0.0
+        self.free = 0.0
+        self.longest = 0.0
+
+    def update(self, distance: float) -> None:
+        if distance <= HOLD_RADIUS:
+            self.held += CYCLE
+            self.free = 0.0
+            self.longest = max(self.longest, self.held)
+        else:
+            self.free += CYCLE
+            if self.free >= HOLD_RESET_S - 1e-9:
+                self.held = 0.0
+
+
+def run_dribble(
+    kind: str,
+    robot_type: int = 0,
+    distance: float = 10.0,
+    foot: str = "left",
+    direction_deg: float = 0.0,
+    seed: int = 0,
+    max_seconds: float | None = None,
+) -> DribbleRun:
+    """Dribble until the ball travelled ``distance`` m along ``direction_deg`` (or fell, or
+    ``max_seconds``, by default the time at 0.2 m/s)."""
+    session, agent = start_dribble_episode(robot_type, direction_deg, seed)
+    result = DribbleRun(kind, robot_type, foot, direction_deg)
+    skill = agent.behavior.skill("dribble")
+    limit = max_seconds if max_seconds is not None else distance / 0.2 + 2.0
+    h = math.radians(direction_deg)
+    ux, uy = math.cos(h), math.sin(h)
+    holding = _Holding()
+    lost = False
+    try:
+        for cycle in range(round(limit / CYCLE)):
+            agent.run("dribble", kind, direction_deg, foot)
+            result.seconds = (cycle + 1) * CYCLE
+            bx, by, _ = session.ball.position()
+            tx, ty, _ = agent.robot.torso_position()
+            gap = math.hypot(bx - tx, by - ty)
+            result.phase_distances[skill.phase].append(gap)
+            holding.update(gap)
+            if session.referee.play_mode != "PlayOn":
+                result.holding_fouls += 1
+                agent.trainer("(playMode PlayOn)")
+            yaw = math.radians(agent.robot.torso_yaw_deg())
+            ahead = math.cos(yaw) * (bx - tx) + math.sin(yaw) * (by - ty)
+            if not lost and (gap > LOST_DISTANCE or ahead < 0.0):
+                lost = True
+                result.ball_losses += 1
+            elif lost and gap < REGAINED_DISTANCE and ahead > 0.0:
+                lost = False
+            result.distance = ux * bx + uy * by
+            if agent.robot.has_fallen():
+                result.fell = True
+                break
+            if result.distance >= distance:
+                result.reached = True
+                break
+    finally:
+        session.close()
+    result.max_held_s = holding.longest
+    return result
+
+
+def report_lines(run: DribbleRun) -> list[str]:
+    """The ``name: value`` lines of one run, named by gait and robot type."""
+    key = f"{run.kind}_{run.foot}" if run.foot != "left" else run.kind
+    t = f"type{run.robot_type}"
+    lines = [
+        f"{key}_mps[{t}]: {run.speed:.3f}",
+        f"{key}_distance_m[{t}]: {run.distance:.2f}",
+        f"{key}_seconds[{t}]: {run.seconds:.2f}",
+        f"{key}_ball_losses[{t}]: {run.ball_losses}",
+        f"{key}_falls[{t}]: {int(run.fell)}",
+        f"{key}_holding_fouls[{t}]: {run.holding_fouls}",
+        f"{key}_max_held_s[{t}]: {run.max_held_s:.2f}",
+    ]
+    for (phase_t, left), median in run.phase_medians().items():
+        side = "left" if left else "right"
+        lines.append(f"{key}_ball_distance_m[{t}][t={phase_t},{side}]: {median:.3f}")
+    return lines
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--types", type=int, nargs="+", default=[0], choices=ROBOT_TYPES)
+    parser.add_argument("--kinds", nargs="+", default=["dfdl", "lfdl"])
+    parser.add_argument("--foot", default="left", choices=("left", "right"))
+    parser.add_argument("--distance", type=float, default=10.0)
+    parser.add_argument("--direction", type=float, default=0.0)
+    parser.add_argument("--seed", type=int, default=0)
+    args = parser.parse_args(argv)
+    for robot_type in args.types:
+        for kind in args.kinds:
+            run = run_dribble(kind, robot_type, args.distance, args.foot, args.direction, args.seed)
+            for line in report_lines(run):
+                print(line, flush=True)
+
+
+if __name__ == "__main__":
+    main()
