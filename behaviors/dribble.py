@@ -145,8 +145,9 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     Turn: proportional to the heading error. Sideways: proportional to the ball's offset from
     the line, plus the orbit term ``-turn * ball_x`` (turning left swings a ball ahead to the
     right; stepping right by as much keeps it in front). Forward: the gait's speed plus a
-    share of how far the ball rolled beyond ``ball_ahead``, scaled down as the ball drifts off
-    the line or the heading is wrong; once out of reach only the catch-up term remains.
+    share of how far the ball rolled beyond ``ball_ahead``; the gait's speed shrinks as the
+    ball drifts off the line, both shrink as the heading is wrong; once out of reach only the
+    catch-up term remains.
     """
     turn_deg = _clip(gait.turn_gain * inputs.heading_error_deg, gait.max_turn_deg)
     side_error = inputs.ball_y - gait.ball_side
@@ -158,7 +159,10 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     catch_up = gait.ahead_gain * (inputs.ball_x - gait.ball_ahead)
     if inputs.ball_x < 0.0:  # the ball is behind: never walk on over it
         catch_up = gait.min_speed
-    vx = min(max((base + catch_up) * aligned * facing, gait.min_speed), gait.max_speed)
+    # an off-line ball near the feet would be hit on its side: slow down while stepping
+    # across; a ball far ahead is caught up with whatever its side
+    vx = (base * aligned + catch_up) * facing
+    vx = min(max(vx, gait.min_speed), gait.max_speed)
     return vx, vy, turn_deg
 
 
