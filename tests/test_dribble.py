@@ -1,0 +1,264 @@
+"""The dribble-long gaits: controller law, parameters, mirror, and short runs in the simulator."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from behaviors.dribble import (
+    DRIBBLE_KINDS,
+    DribbleGait,
+    DribbleInputs,
+    DribbleSkill,
+    _mirrored_robot,
+    ball_within_reach,
+    dribble_gait,
+    dribble_velocity,
+    dribble_walk_parameters,
+)
+from behaviors.joint_control import JointCommands
+from behaviors.mirror import mirror_joint_angles
+from behaviors.skill import SkillContext
+from world.nao_model import ROBOT_TYPES
+from world.robot_state import RobotState
+
+GAIT = DribbleGait()
+
+
+def _inputs(x=0.2, y=0.0, heading_error=0.0) -> DribbleInputs:
+    return DribbleInputs(x, y, 0.0, 0.0, heading_error)
+
+
+# ------------------------------------------------------------------ the control law
+def test_ball_on_the_line_walks_straight_at_the_gait_speed():
+    vx, vy, turn = dribble_velocity(_inputs(GAIT.ball_ahead, GAIT.ball_side), GAIT)
+    assert vx == pytest.approx(GAIT.speed)
+    assert vy == pytest.approx(0.0)
+    assert turn == pytest.approx(0.0)
+
+
+@pytest.mark.parametrize("sign", (1.0, -1.0))
+def test_ball_off_the_line_steps_towards_it_and_slows_down(sign):
+    vx, vy, _ = dribble_velocity(_inputs(GAIT.ball_ahead, sign * 0.05), GAIT)
+    assert vy * sign > 0.0
+    assert vx < GAIT.speed
+
+
+def test_ball_rolled_ahead_speeds_up_and_out_of_reach_only_catches_up():
+    near, _, _ = dribble_velocity(_inputs(GAIT.ball_ahead), GAIT)
+    ahead, _, _ = dribble_velocity(_inputs(GAIT.ball_ahead + 0.1), GAIT)
+    assert ahead > near
+    gone = _inputs(GAIT.reach_max_ahead + 0.5)
+    assert not ball_within_reach(gone, GAIT)
+    far_vx, _, _ = dribble_velocity(gone, GAIT)
+    assert far_vx == pytest.approx(min(GAIT.max_speed, GAIT.ahead_gain * (gone.ball_x - 0.2)))
+
+
+def test_ball_behind_never_walks_on_over_it():
+    vx, _, _ = dribble_velocity(_inputs(-0.1), GAIT)
+    assert vx == pytest.approx(GAIT.min_speed)
+
+
+def test_turning_left_steps_right_to_orbit_the_ball():
+    vx, vy, turn = dribble_velocity(_inputs(GAIT.ball_ahead, 0.0, 20.0), GAIT)
+    assert turn > 0.0
+    assert vy < 0.0
+    assert vx < GAIT.speed
+
+
+def test_within_reach_window():
+    assert ball_within_reach(_inputs(0.2, 0.0), GAIT)
+    assert not ball_within_reach(_inputs(0.05, 0.0), GAIT)
+    assert not ball_within_reach(_inputs(0.2, GAIT.reach_side + 0.01), GAIT)
+    lfdl = dribble_gait("lfdl", 0)
+    assert ball_within_reach(_inputs(lfdl.ball_ahead, lfdl.ball_side), lfdl)
+
+
+def test_inputs_mirror_is_an_involution_and_negates_lateral_values():
+    inputs = DribbleInputs(0.2, 0.03, 0.4, -0.1, 12.0)
+    assert inputs.mirrored().mirrored() == inputs
+    assert inputs.mirrored() == DribbleInputs(0.2, -0.03, 0.4, 0.1, -12.0)
+
+
+# ------------------------------------------------------------------ parameters
+@pytest.mark.parametrize("kind", DRIBBLE_KINDS)
+@pytest.mark.parametrize("robot_type", ROBOT_TYPES)
+def test_every_type_and_kind_has_parameters(kind, robot_type):
+    gait = dribble_gait(kind, robot_type)
+    walk = dribble_walk_parameters(kind, robot_type)
+    assert gait.reach_min_ahead < gait.ball_ahead < gait.reach_max_ahead
+    assert gait.min_speed <= gait.speed <= gait.max_speed
+    assert walk.step.step_cycles == 8  # the 16 phases of the thesis
+    # the dribbles keep the ball beyond the 2023 holding radius (0.12 m) by design
+    assert gait.ball_ahead > 0.12
+
+
+def test_lfdl_keeps_the_ball_further_out_and_to_the_left():
+    dfdl, lfdl = dribble_gait("dfdl", 0), dribble_gait("lfdl", 0)
+    assert lfdl.ball_ahead > dfdl.ball_ahead
+    assert lfdl.ball_side > 0.0 == dfdl.ball_side
+
+
+def test_unknown_kind_foot_and_type_are_rejected():
+    skill = DribbleSkill()
+    with pytest.raises(ValueError, match="kind"):
+        skill.validate("cfdl", 0.0)
+    with pytest.raises(ValueError, match="foot"):
+        skill.validate("dfdl", 0.0, "middle")
+    with pytest.raises(ValueError, match="finite"):
+        skill.validate("dfdl", math.nan)
+    with pytest.raises(ValueError, match="robot type"):
+        dribble_gait("dfdl", 7)
+
+
+# ------------------------------------------------------------------ the mirror
+@dataclass
+class _Pose:
+    x: float
+    y: float
+    heading_deg: float
+
+
+@dataclass
+class _Ball:
+    velocity: tuple[float, float]
+
+
+@dataclass
+class _World:
+    """The parts of a world model the dribble reads."""
+
+    robot: RobotState
+    pose: _Pose
+    ball: _Ball
+    ball_relative_ego: np.ndarray
+    localizer: None = None
+
+
+def _robot(rng: np.random.Generator) -> RobotState:
+    robot = RobotState(0)
+    names = JointCommands(0).joint_names
+    robot.joints_deg = {n: float(rng.uniform(-20, 20)) for n in names}
+    robot.gyro_deg_s = rng.normal(0, 10, 3)
+    robot.up = np.array([0.05, -0.08, 0.99]) / np.linalg.norm([0.05, -0.08, 0.99])
+    return robot
+
+
+def _world(robot, heading, ball_y, ball_vy) -> _World:
+    return _World(robot, _Pose(0.0, 0.0, heading), _Ball((0.3, ball_vy)), np.array([0.2, ball_y]))
+
+
+def test_right_footed_dribble_is_the_mirror_image_of_the_left_footed_one():
+    """Same situation mirrored (body readings, ball, heading and direction): the right-footed
+    LFDL sends exactly the mirrored joint speeds of the left-footed one, cycle after cycle."""
+    rng = np.random.default_rng(3)
+    left, right = DribbleSkill(), DribbleSkill()
+    for _ in range(20):
+        robot = _robot(rng)
+        heading, ball_y, ball_vy = rng.uniform(-30, 30), rng.uniform(0, 0.1), rng.normal(0, 0.2)
+        commands = {foot: JointCommands(0) for foot in ("left", "right")}
+        world_left = _world(robot, heading, ball_y, ball_vy)
+        world_right = _world(_mirrored_robot(robot), -heading, -ball_y, -ball_vy)
+        left.step(SkillContext(world_left, commands["left"], None), "lfdl", 10.0, "left")
+        right.step(SkillContext(world_right, commands["right"], None), "lfdl", -10.0, "right")
+        expected = mirror_joint_angles(commands["left"].speeds())
+        assert commands["right"].speeds() == pytest.approx(expected, abs=1e-9)
+        t, left_active = left.phase
+        assert right.phase == (t, not left_active)
+        assert right.gait_phase == left.phase
+
+
+def test_mirrored_robot_state_is_an_involution():
+    robot = _robot(np.random.default_rng(0))
+    twice = _mirrored_robot(_mirrored_robot(robot))
+    assert twice.joints_deg == pytest.approx(robot.joints_deg)
+    assert twice.gyro_deg_s == pytest.approx(robot.gyro_deg_s)
+    assert twice.up == pytest.approx(robot.up)
+    assert _mirrored_robot(robot).roll_deg == pytest.approx(-robot.roll_deg)
+    assert _mirrored_robot(robot).pitch_deg == pytest.approx(robot.pitch_deg)
+
+
+# ------------------------------------------------------------------ in the simulator
+pybullet = pytest.importorskip("pybullet")
+
+from benchmarks.dribble import start_dribble_episode  # noqa: E402
+
+#: One second and a half: the robot reaches the ball (0.3 m) and touches it a few times.
+SHORT_RUN_CYCLES = 90
+
+
+@dataclass
+class _ShortRun:
+    phases: list[tuple[int, bool]]
+    ball_start: np.ndarray
+    ball_end: np.ndarray
+    #: robot link names that touched the ball
+    touched: set[str]
+    #: cycles where the ball sped up, and whether the robot touched it then
+    speed_ups: list[bool]
+    fell: bool
+
+
+def _short_run(kind: str, foot: str, skill_name: str = "dribble") -> _ShortRun:
+    session, agent = start_dribble_episode(0, 0.0, seed=0)
+    try:
+        ball = session.ball
+        start = np.array(ball.position())
+        phases, touched, speed_ups = [], set(), []
+        speed = ball.speed()
+        for _ in range(SHORT_RUN_CYCLES):
+            if skill_name == "dribble":
+                agent.run("dribble", kind, 0.0, foot)
+            else:
+                agent.run("walk_velocity", 0.3, 0.0, 0.0)
+            phases.append(agent.behavior.skill(skill_name).phase)
+            contacts = pybullet.getContactPoints(
+                bodyA=ball.body_id, bodyB=agent.robot.body_id, physicsClientId=session.world.client
+            )
+            names = {agent.robot.link_name(c[4]) for c in contacts}
+            touched |= names
+            new_speed = ball.speed()
+            if new_speed > speed + 0.02:
+                speed_ups.append(bool(names))
+            speed = new_speed
+        return _ShortRun(
+            phases, start, np.array(ball.position()), touched, speed_ups, agent.robot.has_fallen()
+        )
+    finally:
+        session.close()
+
+
+def _assert_phase_sequence(phases: list[tuple[int, bool]]) -> None:
+    """t runs 0..7 cycle by cycle and the swinging leg changes with every step."""
+    steps = [phases[i : i + 8] for i in range(0, len(phases) - len(phases) % 8, 8)]
+    assert len(steps) >= 8
+    for k, step in enumerate(steps):
+        assert [t for t, _ in step] == list(range(8))
+        assert len({left for _, left in step}) == 1
+        if k:
+            assert step[0][1] != steps[k - 1][0][1]
+
+
+def test_walk_phase_sequence():
+    run = _short_run("", "left", skill_name="walk_velocity")
+    _assert_phase_sequence(run.phases)
+
+
+@pytest.mark.parametrize(("kind", "foot"), [("dfdl", "left"), ("lfdl", "left"), ("lfdl", "right")])
+def test_short_dribble_moves_the_ball_forward_by_contact_only(kind, foot):
+    run = _short_run(kind, foot)
+    assert not run.fell
+    _assert_phase_sequence(run.phases)
+    assert run.phases[0] == (0, foot == "left")  # the chosen foot's leg swings first
+    moved = run.ball_end - run.ball_start
+    assert moved[0] > 0.15  # forward ...
+    assert abs(moved[1]) < moved[0]  # ... more than sideways
+    assert run.speed_ups and all(run.speed_ups)  # it sped up only while touching the robot
+    feet = {name for name in run.touched if "foot" in name or "toe" in name}
+    if kind == "lfdl":  # only the chosen foot touches the ball
+        assert feet == {"lfoot" if foot == "left" else "rfoot"}, feet
+    else:  # both feet take turns
+        assert {"lfoot", "rfoot"} <= feet, feet
