@@ -26,12 +26,18 @@ import math
 from dataclasses import dataclass, replace
 
 __all__ = [
+    "SWING_PROFILES",
     "FootPose",
     "FootTargets",
     "StepCommand",
     "StepGenerator",
     "StepParameters",
+    "swing_progress",
 ]
+
+
+#: the swing profiles :func:`swing_progress` knows
+SWING_PROFILES = ("cosine", "trapezoid")
 
 
 @dataclass(frozen=True, slots=True)
@@ -58,6 +64,12 @@ class StepParameters:
     max_turn: float = 0.4
     #: how far the backward steps may go, as a share of max_forward
     backward_share: float = 0.6
+    #: the swing foot's forward/sideways/turn profile over the step: "cosine" (raised cosine,
+    #: peak speed pi/2 times the mean) or "trapezoid" (constant speed between two ramps of
+    #: ``swing_ramp`` of the step each, peak 1 / (1 - swing_ramp) times the mean). The swing
+    #: leg's joints hit their speed cap first, so a flatter profile allows longer steps.
+    swing_profile: str = "cosine"
+    swing_ramp: float = 0.25
 
     def __post_init__(self) -> None:
         if self.step_cycles < 2:
@@ -66,6 +78,10 @@ class StepParameters:
             raise ValueError("torso_height and foot_spread must be positive")
         if self.swing_height < 0.0 or self.sway < 0.0:
             raise ValueError("swing_height and sway must not be negative")
+        if self.swing_profile not in SWING_PROFILES:
+            raise ValueError(f"swing_profile must be one of {SWING_PROFILES}")
+        if not 0.0 < self.swing_ramp <= 0.5:
+            raise ValueError(f"swing_ramp must be in (0, 0.5], got {self.swing_ramp}")
 
 
 @dataclass(frozen=True, slots=True)
@@ -122,6 +138,25 @@ class FootTargets:
 def _smooth(s: float) -> float:
     """0 -> 1 with zero slope at both ends: the swing foot leaves and lands gently."""
     return 0.5 - 0.5 * math.cos(math.pi * s)
+
+
+def _trapezoid(s: float, ramp: float) -> float:
+    """0 -> 1 at constant speed between two ramps of length ``ramp`` (constant acceleration):
+    the lowest peak speed for a profile that still starts and ends at rest."""
+    peak = 1.0 / (1.0 - ramp)
+    if s < ramp:
+        return 0.5 * peak * s * s / ramp
+    if s > 1.0 - ramp:
+        return 1.0 - _trapezoid(1.0 - s, ramp)
+    return peak * (s - 0.5 * ramp)
+
+
+def swing_progress(s: float, params: StepParameters) -> float:
+    """How far (0 -> 1) the swing foot has gone at step share ``s`` (0 -> 1)."""
+    s = min(max(s, 0.0), 1.0)
+    if params.swing_profile == "trapezoid":
+        return _trapezoid(s, params.swing_ramp)
+    return _smooth(s)
 
 
 class StepGenerator:
@@ -195,7 +230,7 @@ class StepGenerator:
         landing = self._landing_planned.moved_back(
             -c.forward * remaining, -c.left * remaining, -c.turn * remaining
         )
-        k = _smooth(s)
+        k = swing_progress(s, p)
         swing = FootPose(
             self._lift_off.x + (landing.x - self._lift_off.x) * k,
             self._lift_off.y + (landing.y - self._lift_off.y) * k,

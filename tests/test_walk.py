@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import pytest
 
-from behaviors.step_generator import StepCommand, StepGenerator, StepParameters
+from behaviors.step_generator import StepCommand, StepGenerator, StepParameters, swing_progress
 from behaviors.walk import WalkEngine, walk_parameters
 from world.nao_model import ROBOT_TYPES
 
@@ -188,3 +189,29 @@ def test_walk_to_target_stops_within_10_cm():
         assert math.hypot(x - target[0], y - target[1]) < 0.1
     finally:
         driver.session.close()
+
+
+@pytest.mark.parametrize("ramp", (0.125, 0.25, 0.5))
+def test_trapezoid_swing_starts_and_ends_at_rest_with_a_lower_peak_than_the_cosine(ramp):
+    params = StepParameters(swing_profile="trapezoid", swing_ramp=ramp)
+    cosine = StepParameters()
+    samples = [i / 400 for i in range(401)]
+    progress = [swing_progress(s, params) for s in samples]
+    assert progress[0] == pytest.approx(0.0) and progress[-1] == pytest.approx(1.0)
+    assert all(b >= a for a, b in itertools.pairwise(progress))  # never goes back
+    speeds = [(b - a) * 400 for a, b in itertools.pairwise(progress)]
+    assert speeds[0] < 0.05 and speeds[-1] < 0.05  # lifts off and lands at rest
+    assert max(speeds) == pytest.approx(1.0 / (1.0 - ramp), rel=0.01)
+    cosine_peak = max(
+        (swing_progress(b, cosine) - swing_progress(a, cosine)) * 400
+        for a, b in itertools.pairwise(samples)
+    )
+    if ramp < 0.3:
+        assert max(speeds) < cosine_peak
+
+
+def test_the_swing_profile_is_checked():
+    with pytest.raises(ValueError):
+        StepParameters(swing_profile="square")
+    with pytest.raises(ValueError):
+        StepParameters(swing_profile="trapezoid", swing_ramp=0.0)
