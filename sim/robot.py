@@ -250,6 +250,23 @@ def _rotation(quat: tuple[float, ...]) -> np.ndarray:
     return np.array(pybullet.getMatrixFromQuaternion(quat)).reshape(3, 3)
 
 
+def _to_local(matrix: Sequence[float], v: Sequence[float]) -> Vec3:
+    """``R^T v`` for a row-major 3x3 ``matrix`` (9 floats, as ``getMatrixFromQuaternion``
+    gives): a world vector in the rotated frame. Plain floats: per-cycle sensor code calls this
+    a few times for single vectors, where numpy's per-call overhead dominates."""
+    x, y, z = v
+    return (
+        matrix[0] * x + matrix[3] * y + matrix[6] * z,
+        matrix[1] * x + matrix[4] * y + matrix[7] * z,
+        matrix[2] * x + matrix[5] * y + matrix[8] * z,
+    )
+
+
+def _clip(value: float, low: float, high: float) -> float:
+    """``numpy.clip`` for one float (the same result: ``min(max(value, low), high)``)."""
+    return min(max(value, low), high)
+
+
 # --------------------------------------------------------------------------------------------
 # The robot
 # --------------------------------------------------------------------------------------------
@@ -287,13 +304,19 @@ class SimRobot:
             self._link_of[name] for name in STRIKING_BODIES if name in self._link_of
         ]
         self._configure_dynamics()
-        self._speeds = np.zeros(len(self.spec.joints))
-        self._targets = np.zeros(len(self.spec.joints))
+        # motor state as plain float lists: numpy's per-call overhead on 22 numbers costs more
+        # than the arithmetic (the results are the same IEEE operations either way)
+        n = len(self.spec.joints)
+        self._speeds = [0.0] * n
+        self._targets = [0.0] * n
         self._cycle_start = self._targets
-        self._lower = np.radians([j.min_deg for j in self.spec.joints])
-        self._upper = np.radians([j.max_deg for j in self.spec.joints])
-        self._prev_velocity = np.zeros(3)
-        self._acc = np.array([0.0, 0.0, -GRAVITY])
+        self._lower = np.radians([j.min_deg for j in self.spec.joints]).tolist()
+        self._upper = np.radians([j.max_deg for j in self.spec.joints]).tolist()
+        self._bounds = tuple(zip(self._lower, self._upper, strict=True))
+        self._position_gains = [self.physics.servo_gain] * n
+        self._velocity_gains = [1.0] * n
+        self._prev_velocity: Vec3 = (0.0, 0.0, 0.0)
+        self._acc: Vec3 = (0.0, 0.0, -GRAVITY)
         self._limp = False
         self._apply_motors()
         world.register_state_holder(self)
@@ -310,7 +333,7 @@ class SimRobot:
         self._name_of = {i: name for name, i in self._link_of.items()}
         self._joint_indices = [joint_index[j.perceptor] for j in self.spec.joints]
         self._effector_pos = {j.effector: k for k, j in enumerate(self.spec.joints)}
-        self._max_speeds = np.array([j.max_speed for j in self.spec.joints])
+        self._max_speeds = [float(j.max_speed) for j in self.spec.joints]
         self._body_names = [b.name for b in self.spec.bodies]
         self._body_links = [self._link_of[name] for name in self._body_names[1:]]
         self._foot_links = {
@@ -346,19 +369,18 @@ class SimRobot:
                 bid, bid, self._link_of[a], self._link_of[b], 0, physicsClientId=cid
             )
 
-    def _apply_motors(self, targets: np.ndarray | None = None) -> None:
+    def _apply_motors(self, targets: list[float] | None = None) -> None:
         """Send the motor commands (see :meth:`before_cycle`)."""
         force = 0.0 if self._limp else self.physics.motor_torque
-        n = len(self._joint_indices)
         pybullet.setJointMotorControlArray(
             self.body_id,
             self._joint_indices,
             pybullet.POSITION_CONTROL,
-            targetPositions=(self._targets if targets is None else targets).tolist(),
-            targetVelocities=self._speeds.tolist(),
-            positionGains=[self.physics.servo_gain] * n,
-            velocityGains=[1.0] * n,
-            forces=[force] * n,
+            targetPositions=self._targets if targets is None else targets,
+            targetVelocities=self._speeds,
+            positionGains=self._position_gains,
+            velocityGains=self._velocity_gains,
+            forces=[force] * len(self._joint_indices),
             physicsClientId=self._client,
         )
 
@@ -373,22 +395,29 @@ class SimRobot:
         the joint's limits. Within the cycle the target moves on with every substep
         (:meth:`before_substep`), so the pull never runs ahead of the commanded speed.
         """
-        angles = np.array(
-            [s[0] for s in pybullet.getJointStates(
-                self.body_id, self._joint_indices, physicsClientId=self._client
-            )]
-        )  # fmt: skip
+        states = pybullet.getJointStates(
+            self.body_id, self._joint_indices, physicsClientId=self._client
+        )
         window = self.physics.servo_window
-        self._cycle_start = np.clip(self._targets, self._lower, self._upper)
-        targets = self._targets + self._speeds * CYCLE_SECONDS
-        targets = np.clip(targets, angles - window, angles + window)
-        self._targets = np.clip(targets, self._lower, self._upper)
+        # min(max(x, low), high) is numpy.clip's result for one float, inlined: hot path
+        bounds = self._bounds
+        self._cycle_start = [
+            min(max(t, low), high) for t, (low, high) in zip(self._targets, bounds, strict=True)
+        ]
+        self._targets = [
+            min(max(min(max(t + v * CYCLE_SECONDS, s[0] - window), s[0] + window), low), high)
+            for t, v, s, (low, high) in zip(
+                self._targets, self._speeds, states, bounds, strict=True
+            )
+        ]
 
     def before_substep(self, fraction: float) -> None:
         """Aim the motors at where the joint should be as this substep starts (``fraction`` of
         the cycle done). Bullet's motor asks for ``speed + gain * error / dt``: with the error
         measured against the current target, a joint on track moves at its commanded speed."""
-        self._apply_motors(self._cycle_start + (self._targets - self._cycle_start) * fraction)
+        self._apply_motors(
+            [a + (b - a) * fraction for a, b in zip(self._cycle_start, self._targets, strict=True)]
+        )
 
     def striking_speed(self) -> float:
         """Fastest surface speed (m/s) of the feet and shanks: |v| + |omega| * reach."""
@@ -417,23 +446,22 @@ class SimRobot:
 
     # ---------------------------------------------------------------- effectors
     def set_joint_speeds(self, speeds: Mapping[str, float]) -> None:
-        """Set target speeds (rad/s) by effector name; others keep their last command."""
-        changed = False
+        """Set target speeds (rad/s) by effector name; others keep their last command.
+
+        Nothing is sent to Bullet here: :meth:`before_substep` sends every motor command before
+        each physics step (``PhysicsWorld.step_cycle`` is the only way the world steps)."""
         for name, speed in speeds.items():
             k = self._effector_pos.get(name)
             if k is None:
                 raise KeyError(f"unknown effector {name!r}; valid: {list(self.effector_names)}")
-            clipped = float(np.clip(speed, -self._max_speeds[k], self._max_speeds[k]))
-            if not math.isfinite(clipped):
-                clipped = 0.0
-            if clipped != self._speeds[k]:
+            limit = self._max_speeds[k]
+            speed = float(speed)
+            clipped = 0.0 if math.isnan(speed) else _clip(speed, -limit, limit)
+            if clipped != self._speeds[k]:  # (keeps the sign of a zero, as before)
                 self._speeds[k] = clipped
-                changed = True
-        if changed:
-            self._apply_motors()
 
     def joint_speed_targets(self) -> dict[str, float]:
-        return dict(zip(self.effector_names, self._speeds.tolist(), strict=True))
+        return dict(zip(self.effector_names, self._speeds, strict=True))
 
     def set_limp(self, limp: bool = True) -> None:
         """Switch every motor off (zero torque) or back on, keeping the speed targets."""
@@ -443,11 +471,11 @@ class SimRobot:
     # ---------------------------------------------------------------- sensors
     def update_sensors(self) -> None:
         """Refresh the accelerometer from the torso's velocity change over the last cycle."""
-        velocity = np.asarray(self._base_velocity()[0])
-        acc_world = (velocity - self._prev_velocity) / CYCLE_SECONDS
+        velocity = self._base_velocity()[0]
+        acc_world = [(v - p) / CYCLE_SECONDS for v, p in zip(velocity, self._prev_velocity)]
         acc_world[2] -= GRAVITY
-        self._acc = self._torso_rotation().T @ acc_world
-        self._prev_velocity = velocity
+        self._acc = _to_local(self._torso_matrix(), acc_world)
+        self._prev_velocity = tuple(velocity)
 
     def joint_angles_deg(self) -> dict[str, float]:
         """Joint perceptor name -> angle in degrees, in the server's HJ order."""
@@ -468,13 +496,13 @@ class SimRobot:
 
     def gyro_deg_s(self) -> tuple[float, float, float]:
         """Torso angular velocity in the torso's native frame, deg/s."""
-        omega = self._torso_rotation().T @ np.asarray(self._base_velocity()[1])
-        return tuple(np.degrees(omega).tolist())
+        omega = _to_local(self._torso_matrix(), self._base_velocity()[1])
+        return (math.degrees(omega[0]), math.degrees(omega[1]), math.degrees(omega[2]))
 
     def accelerometer(self) -> tuple[float, float, float]:
         """Proper acceleration of the torso in its native frame (m/s^2), as of the last
         :meth:`update_sensors`: (0, 0, 9.81) standing still, 0 in free fall."""
-        return tuple(self._acc.tolist())
+        return self._acc
 
     def force_resistance(self) -> dict[str, ForceResistance]:
         """Foot (and toe) pressure sensors in contact: force-weighted contact centre and total
@@ -492,20 +520,17 @@ class SimRobot:
                 acc[i] += n * normal[i] + f1 * d1[i] + f2 * d2[i]
                 acc[3 + i] += n * pos[i]
             acc[6] += n
-        sums = {k: (np.array(v[:3]), np.array(v[3:6]), v[6]) for k, v in sums.items()}
         if not sums:
             return {}  # no foot touches anything
         links = [self._foot_links[s] for s in sums]
         states = pybullet.getLinkStates(self.body_id, links, physicsClientId=self._client)
         result = {}
-        for (sensor, (force, moment, weight)), state in zip(sums.items(), states, strict=True):
-            rot = _rotation(state[1])
-            centre_world = moment / weight if weight > 0 else np.asarray(state[0])
-            centre = rot.T @ (centre_world - np.asarray(state[0]))
-            local_force = rot.T @ force
-            result[sensor] = ForceResistance(
-                sensor, tuple(centre.tolist()), tuple(local_force.tolist())
-            )
+        for (sensor, acc), state in zip(sums.items(), states, strict=True):
+            rot = pybullet.getMatrixFromQuaternion(state[1])
+            origin, weight = state[0], acc[6]
+            centre_world = [m / weight for m in acc[3:6]] if weight > 0 else origin
+            centre = _to_local(rot, [c - o for c, o in zip(centre_world, origin, strict=True)])
+            result[sensor] = ForceResistance(sensor, centre, _to_local(rot, acc[:3]))
         return {s: result[s] for s in self._sensor_order if s in result}
 
     # ---------------------------------------------------------------- pose
@@ -517,6 +542,10 @@ class SimRobot:
 
     def _torso_rotation(self) -> np.ndarray:
         return _rotation(self._base_pose()[1])
+
+    def _torso_matrix(self) -> tuple[float, ...]:
+        """The torso's rotation as 9 row-major floats (no numpy: see :func:`_to_local`)."""
+        return pybullet.getMatrixFromQuaternion(self._base_pose()[1])
 
     def torso_position(self) -> Vec3:
         return tuple(self._base_pose()[0])
@@ -530,8 +559,8 @@ class SimRobot:
 
     def torso_yaw_deg(self) -> float:
         """Heading of the torso's forward (native +y) axis: 0 = world +x, 90 = world +y."""
-        forward = self._torso_rotation()[:, 1]
-        return math.degrees(math.atan2(forward[1], forward[0]))
+        m = self._torso_matrix()
+        return math.degrees(math.atan2(m[4], m[1]))  # forward: the matrix's second column
 
     def team_frame_pose(self, side: str) -> tuple[float, float, float]:
         """Ground truth (x, y, heading deg) in a team's frame (x towards its opponent goal): what
@@ -548,7 +577,7 @@ class SimRobot:
 
     def has_fallen(self) -> bool:
         """Lying or nearly so: the torso is tilted more than 60 deg from upright."""
-        return bool(self.torso_up()[2] < 0.5)
+        return self._torso_matrix()[8] < 0.5  # the z component of the torso's up axis
 
     def body_world_transforms(self) -> dict[str, np.ndarray]:
         """Every body of the spec -> 4x4 world transform of its centre (native axes)."""
@@ -611,25 +640,25 @@ class SimRobot:
         cid = self._client
         pybullet.resetBasePositionAndOrientation(self.body_id, position, quat, physicsClientId=cid)
         pybullet.resetBaseVelocity(self.body_id, (0, 0, 0), (0, 0, 0), physicsClientId=cid)
-        self._prev_velocity = np.zeros(3)
-        self._acc = np.array([0.0, 0.0, -GRAVITY])
+        self._prev_velocity = (0.0, 0.0, 0.0)
+        self._acc = (0.0, 0.0, -GRAVITY)
 
     # ---------------------------------------------------------------- state
     def python_state(self) -> dict:
         """What Bullet's own snapshot lacks: motor targets and the accelerometer's memory."""
         return {
-            "speeds": self._speeds.copy(),
-            "targets": self._targets.copy(),
-            "prev_velocity": self._prev_velocity.copy(),
-            "acc": self._acc.copy(),
+            "speeds": list(self._speeds),
+            "targets": list(self._targets),
+            "prev_velocity": self._prev_velocity,
+            "acc": self._acc,
             "limp": self._limp,
         }
 
     def restore_python_state(self, state: Mapping) -> None:
-        self._speeds = np.array(state["speeds"], dtype=float)
-        self._targets = np.array(state["targets"], dtype=float)
-        self._prev_velocity = np.array(state["prev_velocity"], dtype=float)
-        self._acc = np.array(state["acc"], dtype=float)
+        self._speeds = [float(v) for v in state["speeds"]]
+        self._targets = [float(v) for v in state["targets"]]
+        self._prev_velocity = tuple(float(v) for v in state["prev_velocity"])
+        self._acc = tuple(float(v) for v in state["acc"])
         self._limp = bool(state.get("limp", False))
         self._apply_motors()
 
