@@ -502,7 +502,8 @@ def _canonical_vision(see: str) -> Vision:
 
 
 def _write_polar(polar: Polar) -> str:
-    return f"(pol {_f2(polar.distance)} {_f2(polar.phi)} {_f2(polar.theta)})"
+    # one %-format per item (the same '%.2f' as _f2): the writer runs for every agent each cycle
+    return "(pol %.2f %.2f %.2f)" % (polar.distance, polar.phi, polar.theta)  # noqa: UP031
 
 
 def _write_player(player: SeenPlayer) -> str:
@@ -524,8 +525,14 @@ def _write_vision(vision: Vision) -> str:
 
 def _write_force_resistance(frp: ForceResistance) -> str:
     (cx, cy, cz), (fx, fy, fz) = frp.contact, frp.force
-    return (
-        f"(FRP (n {frp.name}) (c {_f2(cx)} {_f2(cy)} {_f2(cz)}) (f {_f2(fx)} {_f2(fy)} {_f2(fz)}))"
+    return "(FRP (n %s) (c %.2f %.2f %.2f) (f %.2f %.2f %.2f))" % (  # noqa: UP031
+        frp.name,
+        cx,
+        cy,
+        cz,
+        fx,
+        fy,
+        fz,
     )
 
 
@@ -561,13 +568,13 @@ def write_perception(p: Perception) -> bytes:
         f"(time (now {_f2(p.time)}))",
         _write_game_state(p.game_state),
         *[_write_hear(h) for h in p.heard],
-        f"(GYR (n torso) (rt {_f2(gx)} {_f2(gy)} {_f2(gz)}))",
-        f"(ACC (n torso) (a {_f2(ax)} {_f2(ay)} {_f2(az)}))",
+        "(GYR (n torso) (rt %.2f %.2f %.2f))" % (gx, gy, gz),  # noqa: UP031
+        "(ACC (n torso) (a %.2f %.2f %.2f))" % (ax, ay, az),  # noqa: UP031
     ]
     joints = p.joints
     for name in _HEAD_JOINTS:
         if name in joints:
-            out.append(f"(HJ (n {name}) (ax {_f2(joints[name])}))")
+            out.append("(HJ (n %s) (ax %.2f))" % (name, joints[name]))  # noqa: UP031
     if p.vision is not None:
         out.append(_write_vision(p.vision))
     # each FRP goes just before its foot's last joint; FRPs without that joint go last
@@ -585,6 +592,6 @@ def write_perception(p: Perception) -> bytes:
         frp = frp_before.get(name)
         if frp is not None:
             out.append(_write_force_resistance(frp))
-        out.append(f"(HJ (n {name}) (ax {_f2(angle)}))")
+        out.append("(HJ (n %s) (ax %.2f))" % (name, angle))  # noqa: UP031
     out.extend(_write_force_resistance(frp) for frp in leftovers)
     return "".join(out).encode("ascii")
