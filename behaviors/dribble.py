@@ -98,6 +98,8 @@ class DribbleGait:
     max_speed: float = 0.6
     #: m/s of extra forward speed per metre the ball lies beyond ball_ahead
     ahead_gain: float = 2.0
+    #: share of the ball's own forward speed added (a kicked ball runs off: follow it at once)
+    follow_gain: float = 0.0
     #: m/s of sideways speed per metre the ball lies off the line
     side_gain: float = 3.0
     max_side_speed: float = 0.25
@@ -145,9 +147,9 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     Turn: proportional to the heading error. Sideways: proportional to the ball's offset from
     the line, plus the orbit term ``-turn * ball_x`` (turning left swings a ball ahead to the
     right; stepping right by as much keeps it in front). Forward: the gait's speed plus a
-    share of how far the ball rolled beyond ``ball_ahead``; the gait's speed shrinks as the
-    ball drifts off the line, both shrink as the heading is wrong; once out of reach only the
-    catch-up term remains.
+    catch-up term (a share of how far the ball rolled beyond ``ball_ahead`` and of its own
+    forward speed); the gait's speed shrinks as the ball drifts off the line, both shrink as
+    the heading is wrong; once out of reach only the catch-up term remains.
     """
     turn_deg = _clip(gait.turn_gain * inputs.heading_error_deg, gait.max_turn_deg)
     side_error = inputs.ball_y - gait.ball_side
@@ -157,6 +159,7 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     facing = max(0.0, 1.0 - abs(inputs.heading_error_deg) / gait.heading_slowdown_deg)
     base = gait.speed if ball_within_reach(inputs, gait) else 0.0
     catch_up = gait.ahead_gain * (inputs.ball_x - gait.ball_ahead)
+    catch_up += gait.follow_gain * max(inputs.ball_vx, 0.0)
     if inputs.ball_x < 0.0:  # the ball is behind: never walk on over it
         catch_up = gait.min_speed
     # an off-line ball near the feet would be hit on its side: slow down while stepping

@@ -60,6 +60,7 @@ class DribbleRun:
     reached: bool = False
     fell: bool = False
     ball_losses: int = 0
+    max_gap: float = 0.0  # the furthest the ball got from the torso (m)
     holding_fouls: int = 0
     max_held_s: float = 0.0
     #: (t, left_active) -> torso-ball distances (m)
@@ -137,6 +138,7 @@ def run_dribble(
             tx, ty, _ = agent.robot.torso_position()
             gap = math.hypot(bx - tx, by - ty)
             result.phase_distances[skill.phase].append(gap)
+            result.max_gap = max(result.max_gap, gap)
             holding.update(gap)
             if session.referee.play_mode != "PlayOn":
                 result.holding_fouls += 1
@@ -170,6 +172,7 @@ def report_lines(run: DribbleRun) -> list[str]:
         f"{key}_distance_m[{t}]: {run.distance:.2f}",
         f"{key}_seconds[{t}]: {run.seconds:.2f}",
         f"{key}_ball_losses[{t}]: {run.ball_losses}",
+        f"{key}_max_ball_distance_m[{t}]: {run.max_gap:.2f}",
         f"{key}_falls[{t}]: {int(run.fell)}",
         f"{key}_holding_fouls[{t}]: {run.holding_fouls}",
         f"{key}_max_held_s[{t}]: {run.max_held_s:.2f}",
