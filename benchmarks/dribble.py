@@ -9,8 +9,9 @@ perceptions (``learning.local_agent.LocalAgent``).
 Definitions (the report's figures mean exactly this):
 
 * speed: ``distance`` divided by the seconds the ball took to get there (0 if it never did);
-* a ball loss: the ball leaves the robot's reach, i.e. gets more than ``LOST_DISTANCE`` from
-  the torso (along the ground) or falls behind the torso; one loss per time it leaves;
+* a ball loss: the ball gets more than ``LOST_DISTANCE`` (1 m) from the torso along the
+  ground, or falls behind the torso; one loss per time it leaves (``max_ball_distance_m`` says
+  how far it got at most, for a stricter reading);
 * a fall: the robot's torso tilts beyond 60 degrees (the run stops there);
 * ball distance per phase: torso-to-ball distance along the ground, median over the cycles of
   each phase ``(t, left_active)``;
@@ -37,10 +38,13 @@ from world.nao_model import ROBOT_TYPES
 CYCLE = 0.02
 #: The robot starts this far behind the ball (m), as the kick-in-motion episodes do.
 START_BEHIND = 0.3
-#: The ball counts as lost beyond this distance from the torso (m) ...
-LOST_DISTANCE = 0.6
-#: ... and counts as within reach again below this one (hysteresis).
-REGAINED_DISTANCE = 0.45
+#: The ball counts as lost beyond this distance from the torso (m): a dribble long kicks the
+#: ball with the swinging toe to about 1 m/s, and a ball rolling at v goes v * 0.94 s further
+#: (the server's rolling decay), so a ball the robot follows stays within about 1 m; beyond it
+#: the dribble's rhythm is broken ...
+LOST_DISTANCE = 1.0
+#: ... and counts as back within reach below this one (hysteresis).
+REGAINED_DISTANCE = 0.6
 #: The 2023 holding rule's radius (m) and reset time (s).
 HOLD_RADIUS = 0.12
 HOLD_RESET_S = 0.5
