@@ -37,6 +37,7 @@ BUILTIN_SKILL_MODULES: tuple[str, ...] = (
     "behaviors.get_up",
     "behaviors.walk",
     "behaviors.kick",
+    "behaviors.basic_kick",
     "behaviors.dribble",
 )
 

@@ -21,6 +21,7 @@ the get-up does.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from functools import cache
@@ -59,6 +60,34 @@ class KickMotion:
     swing_frames: tuple[int, ...]
     fast_s: float
     slow_s: float
+    #: where the kick expects the ball before it starts: metres from the kicking foot's toe to
+    #: the ball's surface along the foot, and sideways from the foot's centre line (+ = outwards,
+    #: away from the support foot; the right kick mirrors it)
+    ball_gap_m: float = 0.03
+    ball_side_m: float = 0.0
+    #: measured (strength, metres) pairs, increasing in both (``benchmarks/kick.py``); empty
+    #: when the kick has not been calibrated
+    distances: tuple[tuple[float, float], ...] = ()
+
+    def strength_for(self, distance_m: float) -> float:
+        """The strength (0..1) whose measured distance is ``distance_m``, interpolated linearly
+        in the calibration table and clipped to its ends. Raises ValueError without one."""
+        if not self.distances:
+            raise ValueError(f"kick {self.name!r} has no distance calibration")
+        table = self.distances
+        if distance_m <= table[0][1]:
+            return table[0][0]
+        for (s0, d0), (s1, d1) in itertools.pairwise(table):
+            if distance_m <= d1:
+                return s0 + (s1 - s0) * (distance_m - d0) / (d1 - d0)
+        return table[-1][0]
+
+    @property
+    def distance_range_m(self) -> tuple[float, float]:
+        """The shortest and longest calibrated distance (m); (0, 0) without a calibration."""
+        if not self.distances:
+            return (0.0, 0.0)
+        return (self.distances[0][1], self.distances[-1][1])
 
     def swing_duration(self, strength: float) -> float:
         """Seconds the swing lasts at ``strength`` (0..1): foot speed linear in strength."""
@@ -88,13 +117,40 @@ def parse_kicks(data: Mapping[str, Any], source: str) -> dict[str, KickMotion]:
     kicks = {}
     for name, entry in data.items():
         where = f"{source}: kick {name!r}"
-        check_fields(entry, where, {"frames", "swing"}, {"description"})
+        check_fields(entry, where, {"frames", "swing"}, _KICK_OPTIONAL)
         sequence_entry = {"frames": entry["frames"], "description": entry.get("description", "")}
         sequence = parse_sequences({name: sequence_entry}, source)[str(name)]
         kicks[str(name)] = KickMotion(
-            str(name), sequence, *_parse_swing(entry["swing"], f"{where}.swing", sequence)
+            str(name),
+            sequence,
+            *_parse_swing(entry["swing"], f"{where}.swing", sequence),
+            ball_gap_m=check_number(entry.get("ball_gap_m", 0.03), f"{where}.ball_gap_m"),
+            ball_side_m=check_number(entry.get("ball_side_m", 0.0), f"{where}.ball_side_m"),
+            distances=_parse_distances(entry.get("distances", []), f"{where}.distances"),
         )
     return kicks
+
+
+_KICK_OPTIONAL = {"description", "ball_gap_m", "ball_side_m", "distances"}
+
+
+def _parse_distances(data: Any, where: str) -> tuple[tuple[float, float], ...]:
+    """``[[strength, metres], ...]`` with both columns strictly increasing (so that a distance
+    names one strength)."""
+    if not isinstance(data, list) or not all(
+        isinstance(row, list) and len(row) == 2 for row in data
+    ):
+        raise PoseError(f"{where}: expected a list of [strength, metres] pairs")
+    table = tuple(
+        (check_number(s, f"{where}[{i}]"), check_number(d, f"{where}[{i}]"))
+        for i, (s, d) in enumerate(data)
+    )
+    for (s0, d0), (s1, d1) in itertools.pairwise(table):
+        if not (s1 > s0 and d1 > d0):
+            raise PoseError(f"{where}: strengths and distances must both increase")
+    if table and not all(0.0 <= s <= 1.0 for s, _ in table):
+        raise PoseError(f"{where}: strengths must lie in [0, 1]")
+    return table
 
 
 def _parse_swing(
@@ -148,6 +204,8 @@ class KickSkill(Skill):
         self._player: KeyframePlayer | None = None
         self._done = False
         self._balance: _OneLegBalance | None = None
+        #: the kick motions to choose from (None: the packaged ones); searches set their own
+        self.motions: Mapping[str, KickMotion] | None = None
 
     def reset(self) -> None:
         self._player = None
@@ -163,7 +221,7 @@ class KickSkill(Skill):
     def step(self, context: SkillContext, foot: str, strength: float = 1.0) -> bool:
         robot = context.world.robot
         if self._player is None or self._done:
-            motion = kick_motion(robot.robot_type)
+            motion = kick_motion(robot.robot_type, self.motions)
             sequence = motion.sequence(strength, mirror=foot == "right")
             self._player = KeyframePlayer(sequence, robot.robot_type)
             self._balance = _OneLegBalance(sequence, foot == "right")

@@ -1,0 +1,204 @@
+"""Search over a few keyframe parameters of the left-foot kick, scored on distance without a fall.
+
+Why a search: with the joints' speed cap (6.14 rad/s) and the two-cycle action delay, how far
+the ball goes depends on how the wind-up, the swing of the kicking leg and the lean of the
+support leg overlap, which is hard to set by hand. The kick is described by
+:data:`PARAMETERS` (degrees, seconds, metres); :func:`kick_entry` turns a parameter set into a
+``kicks.yaml`` entry (the swing frames keep the structure of ``behaviors/kick.py``: the shift onto
+the support leg, a lift, the wind-up, two predictive swing frames, a recovery, the stand). The
+support leg extends during the swing (hip and knee straighten), which leans the torso back and
+adds its rotation to the kicking leg's swing, as a human kick does.
+
+Scoring (:func:`evaluate`) runs ``benchmarks.kick.run_trial`` at full strength on both feet with
+the ball a little off its expected place: the score is the median distance (m) minus 5 per fall.
+The search is a (1 + lambda) evolution strategy from the packaged kick's parameters with the
+step size halved after each generation without improvement.
+
+Run: ``nice -n 5 .venv/bin/python learning/kick_search.py --generations 10 --offspring 6``; it
+prints every improvement and at the end the best entry as YAML, to paste into ``kicks.yaml``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from behaviors.kick import KICK_LEFT, KickMotion, parse_kicks
+from benchmarks.kick import KickResult, run_trial
+from world.nao_model import robot_spec
+
+#: Penalty (m of score) for a trial in which the robot fell.
+FALL_PENALTY = 5.0
+
+
+@dataclass(frozen=True)
+class Parameter:
+    low: float
+    high: float
+    start: float
+
+
+#: name -> range and start value. Angles in degrees (left kick; support = right leg).
+PARAMETERS: dict[str, Parameter] = {
+    "roll": Parameter(8, 20, 14),  # hip and ankle roll moving the weight onto the support foot
+    "wind_hip": Parameter(-25, 10, -20),  # kicking leg at the end of the wind-up
+    "wind_knee": Parameter(-130, -70, -110),
+    "wind_ankle": Parameter(0, 70, 50),
+    "wind_support_hip": Parameter(0, 50, 15),  # support leg at the end of the wind-up
+    "wind_support_knee": Parameter(-70, 0, -30),
+    "contact_hip": Parameter(10, 70, 38),  # kicking leg at the end of the first swing frame
+    "contact_knee": Parameter(-100, -10, -60),
+    "contact_ankle": Parameter(-30, 60, 24),
+    "end_hip": Parameter(40, 100, 75),  # kicking leg at the end of the swing
+    "end_knee": Parameter(-60, 0, -10),
+    "end_ankle": Parameter(-45, 30, -20),
+    "end_support_hip": Parameter(-30, 30, 15),  # support leg at the end of the swing
+    "end_support_knee": Parameter(-40, 0, -30),
+    "end_support_ankle": Parameter(-20, 50, 17),
+    "swing_s": Parameter(0.12, 0.4, 0.32),  # both swing frames together at full strength
+    "contact_share": Parameter(0.3, 0.8, 0.6),  # share of the swing spent on the first frame
+    "ball_gap_m": Parameter(-0.02, 0.1, 0.03),
+    "ball_side_m": Parameter(-0.04, 0.04, 0.0),
+}
+
+
+def start_parameters() -> dict[str, float]:
+    return {name: p.start for name, p in PARAMETERS.items()}
+
+
+def clip(params: Mapping[str, float]) -> dict[str, float]:
+    return {n: float(min(max(v, PARAMETERS[n].low), PARAMETERS[n].high)) for n, v in params.items()}
+
+
+def kick_entry(p: Mapping[str, float]) -> dict[str, Any]:
+    """A ``kicks.yaml`` entry (plain data) for the parameter set ``p``."""
+    r = round(p["roll"], 1)
+
+    def support(hip: float, knee: float, ankle: float | None = None) -> dict[str, float]:
+        # ankle None: keep the support foot parallel to the torso's level (flat when upright)
+        ankle = -(hip + knee) + 2.0 if ankle is None else ankle
+        return _within_limits({"rlj3": hip, "rlj4": knee, "rlj5": ankle})
+
+    def kicking(hip: float, knee: float, ankle: float) -> dict[str, float]:
+        return _within_limits({"llj3": hip, "llj4": knee, "llj5": ankle})
+
+    swing, share = p["swing_s"], p["contact_share"]
+    shift = {"rlj2": r, "llj2": r, "rlj6": -r, "llj6": -r, **support(15, -30, 17)}
+    shift.update(kicking(15, -30, 17))
+    predictive = {"interpolation": "linear", "track": "predictive"}
+    frames = [
+        {"duration": 0.5, "hold": 0.15, "pose": "stand", "joints": shift},
+        {"duration": 0.2, "joints": kicking(30, -100, 60)},
+        {
+            "duration": 0.2,
+            "hold": 0.04,
+            "joints": {
+                **kicking(p["wind_hip"], p["wind_knee"], p["wind_ankle"]),
+                **support(p["wind_support_hip"], p["wind_support_knee"]),
+            },
+        },
+        {
+            "duration": round(swing * share, 3),
+            **predictive,
+            "joints": kicking(p["contact_hip"], p["contact_knee"], p["contact_ankle"]),
+        },
+        {
+            "duration": round(swing * (1 - share), 3),
+            **predictive,
+            "joints": {
+                **kicking(p["end_hip"], p["end_knee"], p["end_ankle"]),
+                **support(p["end_support_hip"], p["end_support_knee"], p["end_support_ankle"]),
+            },
+        },
+        {"duration": 0.3, "joints": {**kicking(40, -90, 45), **support(15, -30, 17)}},
+        {"duration": 0.6, "hold": 0.3, "pose": "stand"},
+    ]
+    return {
+        "description": "left-foot kick found by learning/kick_search.py",
+        "ball_gap_m": round(p["ball_gap_m"], 3),
+        "ball_side_m": round(p["ball_side_m"], 3),
+        "frames": frames,
+        "swing": {"frames": [3, 4], "fast_s": round(swing, 3), "slow_s": 1.0},
+    }
+
+
+def _within_limits(angles: Mapping[str, float]) -> dict[str, float]:
+    """Angles clipped into the joints' ranges (type 0's, the narrowest) and rounded."""
+    limits = {j.perceptor: (j.min_deg, j.max_deg) for j in robot_spec(0).joints}
+    return {
+        n: round(min(max(a, limits[n][0]), limits[n][1]), 1) for n, a in angles.items()
+    }
+
+
+def motions_for(p: Mapping[str, float]) -> dict[str, KickMotion]:
+    return parse_kicks({KICK_LEFT: kick_entry(p)}, "kick_search")
+
+
+def evaluate(
+    p: Mapping[str, float], seeds: tuple[int, ...] = (1,), robot_type: int = 0
+) -> tuple[float, list[KickResult]]:
+    """Score (median distance minus fall penalties) of full-strength kicks, both feet."""
+    motions = motions_for(p)
+    rng = np.random.default_rng(len(seeds))
+    results = [
+        run_trial(foot, 1.0, seed, robot_type, rng.uniform(-0.01, 0.01), motions)
+        for seed in seeds
+        for foot in ("left", "right")
+    ]
+    distances = [r.distance_m if r.time_to_contact_s is not None else 0.0 for r in results]
+    score = statistics.median(distances) - FALL_PENALTY * sum(r.fell for r in results)
+    return score, results
+
+
+def search(
+    generations: int, offspring: int, step: float, seed: int, robot_type: int
+) -> dict[str, float]:
+    """(1 + lambda) evolution from :func:`start_parameters`; returns the best set found."""
+    rng = np.random.default_rng(seed)
+    best = start_parameters()
+    best_score, _ = evaluate(best, robot_type=robot_type)
+    print(f"start: {best_score:.2f}", flush=True)
+    for generation in range(generations):
+        improved = False
+        for _ in range(offspring):
+            child = clip(
+                {
+                    n: v + rng.normal() * step * (PARAMETERS[n].high - PARAMETERS[n].low)
+                    for n, v in best.items()
+                }
+            )
+            score, results = evaluate(child, robot_type=robot_type)
+            if score > best_score:
+                best, best_score, improved = child, score, True
+                shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
+                print(f"gen {generation}: {best_score:.2f} ({shown})", flush=True)
+        if not improved:
+            step /= 2
+    return best
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--generations", type=int, default=10)
+    parser.add_argument("--offspring", type=int, default=6)
+    parser.add_argument("--step", type=float, default=0.15, help="share of each range")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--robot-type", type=int, default=0)
+    args = parser.parse_args()
+    best = search(args.generations, args.offspring, args.step, args.seed, args.robot_type)
+    print(yaml.safe_dump({"parameters": best}, sort_keys=False))
+    print(yaml.safe_dump({KICK_LEFT: kick_entry(best)}, sort_keys=False, width=100))
+
+
+if __name__ == "__main__":
+    main()
