@@ -1,27 +1,58 @@
-"""Cycles per second of the stand-in with 1 and 22 robots whose joints keep moving.
+"""Physics cost of the stand-in: cycle rates, where Bullet's step time goes, and what physics
+changes WOULD buy (measured here, not adopted).
 
-Each cycle does what the server does per robot: new joint speeds, one world step, sensor update,
-joint angles, gyro, accelerometer and foot pressure. Prints ``cycles_per_s[substeps=S,robots=N]``.
-Run: ``.venv/bin/python benchmarks/physics.py [--cycles N]``
+    .venv/bin/python benchmarks/physics.py                 # cycles_per_s[substeps=S,robots=N]
+    .venv/bin/python benchmarks/physics.py --split         # Bullet's own timers, 22 robots
+    .venv/bin/python benchmarks/physics.py --variants      # speed, stance, fidelity per variant
+    .venv/bin/python benchmarks/physics.py --variant iters15 --pytest tests/test_walk.py
+
+``cycles_per_s``: each cycle does what the server does per robot: new joint speeds, one world
+step, sensor update, joint angles, gyro, accelerometer and foot pressure.
+
+``--split`` records Bullet's internal profile timers (``STATE_LOGGING_PROFILE_TIMINGS``) for
+22 standing robots and prints each phase's share of the step (the timers themselves slow the
+step down, so only the shares mean something).
+
+``--variants`` measures, per candidate physics change: the CPU time of one cycle of 22 standing
+robots (``step_ms[...]``), whether an idle robot of type 0 and 4 still stands still after 4 s
+(height and tilt), and the checks of ``tests/test_fidelity.py`` on the real-server recordings.
+A variant is applied by patching the module constants that the world reads when it is built
+(``sim.physics.SOLVER_ITERATIONS``, ``sim.session.BASE_SUBSTEPS``) or by setting an engine
+parameter on every new world, so the committed physics stays as it is.
 """
 
 from __future__ import annotations
 
 import argparse
+import collections
+import contextlib
+import json
 import math
+import re
 import sys
+import tempfile
 import time
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pybullet
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+import sim.physics
+import sim.session
 from sim.physics import PhysicsWorld
 from sim.robot import SimRobot
 
+TRACES = Path(__file__).resolve().parents[2] / "shared" / "reference" / "rcssserver3d-traces"
 
-def measure(substeps: int, robots: int, cycles: int) -> float:
+
+# --------------------------------------------------------------------------------------------
+# plain cycle rates
+# --------------------------------------------------------------------------------------------
+
+
+def _world_with_robots(substeps: int, robots: int) -> tuple[PhysicsWorld, list[SimRobot]]:
     world = PhysicsWorld(substeps=substeps)
     plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=world.client)
     pybullet.createMultiBody(0, plane, physicsClientId=world.client)
@@ -30,6 +61,11 @@ def measure(substeps: int, robots: int, cycles: int) -> float:
         robot = SimRobot(world, k % 5)
         robot.place(-10.0 + 2.0 * (k % 11), -3.0 + 6.0 * (k // 11), 0.4, 0.0)
         team.append(robot)
+    return world, team
+
+
+def measure(substeps: int, robots: int, cycles: int) -> float:
+    world, team = _world_with_robots(substeps, robots)
     start = time.perf_counter()
     for c in range(cycles):
         s = math.sin(0.1 * c)
@@ -47,10 +83,229 @@ def measure(substeps: int, robots: int, cycles: int) -> float:
     return cycles / elapsed
 
 
+# --------------------------------------------------------------------------------------------
+# where Bullet's step time goes
+# --------------------------------------------------------------------------------------------
+
+#: Bullet profile scopes worth reporting, in the order they nest.
+SPLIT_SCOPES = (
+    "internalSingleStepSimulation",
+    "performDiscreteCollisionDetection",
+    "updateAabbs",
+    "calculateOverlappingPairs",
+    "dispatchAllCollisionPairs",
+    "solveConstraints",
+    "solveGroupCacheFriendlySetup",
+    "setupMultiBodyContactConstraint",
+    "solveGroupCacheFriendlyIterations",
+    "btMultiBody stepVelocities",
+    "btMultiBody stepPositions",
+)
+
+
+def bullet_split(robots: int = 22, cycles: int = 30) -> dict[str, float]:
+    """Share of the step (0..1) each Bullet scope takes, plus ``contacts_per_robot``."""
+    world, _ = _world_with_robots(2, robots)
+    for _ in range(20):  # land and settle
+        world.step_cycle()
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "timings.json"
+        log = pybullet.startStateLogging(
+            pybullet.STATE_LOGGING_PROFILE_TIMINGS, str(path), physicsClientId=world.client
+        )
+        for _ in range(cycles):
+            world.step_cycle()
+        pybullet.stopStateLogging(log, physicsClientId=world.client)
+        contacts = len(pybullet.getContactPoints(physicsClientId=world.client))
+        world.close()
+        files = sorted(Path(folder).glob("timings.json*"))
+        totals, counts = _scope_totals(json.loads(files[0].read_text()))
+    step = totals["internalSingleStepSimulation"]
+    shares = {name: totals[name] / step for name in SPLIT_SCOPES if name in totals}
+    steps = counts["internalSingleStepSimulation"]
+    shares["contact_constraints_per_robot_step"] = (
+        counts["setupMultiBodyContactConstraint"] / steps / robots
+    )
+    shares["contact_points_per_robot"] = contacts / robots
+    return shares
+
+
+def _scope_totals(trace: dict | list) -> tuple[collections.Counter, collections.Counter]:
+    """Total microseconds and count per scope name of a Chrome trace of begin/end events
+    (Bullet appends a running number to each name; it is dropped)."""
+    events = trace["traceEvents"] if isinstance(trace, dict) else trace
+    totals: collections.Counter = collections.Counter()
+    counts: collections.Counter = collections.Counter()
+    stack = []
+    for event in events:
+        if event["ph"] == "B":
+            stack.append(event)
+        elif event["ph"] == "E" and stack:
+            begin = stack.pop()
+            name = re.sub(r"\d+$", "", begin["name"])
+            totals[name] += event["ts"] - begin["ts"]
+            counts[name] += 1
+    return totals, counts
+
+
+# --------------------------------------------------------------------------------------------
+# physics variants (measured, not adopted)
+# --------------------------------------------------------------------------------------------
+
+
+def _engine_parameter(**params: float) -> Callable[[], contextlib.AbstractContextManager]:
+    """A variant that sets Bullet engine parameters on every world built inside it."""
+
+    @contextlib.contextmanager
+    def apply() -> Iterator[None]:
+        original = PhysicsWorld.__init__
+
+        def init(self: PhysicsWorld, *args, **kwargs) -> None:
+            original(self, *args, **kwargs)
+            pybullet.setPhysicsEngineParameter(physicsClientId=self.client, **params)
+
+        PhysicsWorld.__init__ = init
+        try:
+            yield
+        finally:
+            PhysicsWorld.__init__ = original
+
+    return apply
+
+
+def _constant(
+    module: object, name: str, value: int
+) -> Callable[[], contextlib.AbstractContextManager]:
+    """A variant that changes a module constant the world reads when it is built."""
+
+    @contextlib.contextmanager
+    def apply() -> Iterator[None]:
+        original = getattr(module, name)
+        setattr(module, name, value)
+        try:
+            yield
+        finally:
+            setattr(module, name, original)
+
+    return apply
+
+
+VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
+    "current": contextlib.nullcontext,
+    "iters20": _constant(sim.physics, "SOLVER_ITERATIONS", 20),
+    "iters15": _constant(sim.physics, "SOLVER_ITERATIONS", 15),
+    "substeps1": _constant(sim.session, "BASE_SUBSTEPS", 1),
+    "dantzig": _engine_parameter(constraintSolverType=pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG),
+}
+
+
+def step_ms(robots: int, cycles: int) -> float:
+    """CPU milliseconds per cycle of ``robots`` idle standing robots (a session's base substep
+    count; CPU time, so other processes on the machine disturb it less than wall time)."""
+    world, _ = _world_with_robots(sim.session.BASE_SUBSTEPS, robots)
+    for _ in range(20):
+        world.step_cycle()
+    start = time.process_time()
+    for _ in range(cycles):
+        world.step_cycle()
+    elapsed = time.process_time() - start
+    world.close()
+    return 1000.0 * elapsed / cycles
+
+
+def idle_stance(robot_type: int, seconds: float = 4.0) -> tuple[float, float]:
+    """Torso height drop (m) and largest tilt (deg) of an idle robot over ``seconds``."""
+    world, (robot,) = _world_with_robots(sim.session.BASE_SUBSTEPS, 1)
+    robot.remove()
+    robot = SimRobot(world, robot_type)
+    robot.place(0.0, 0.0, 0.4, 0.0)
+    for _ in range(50):
+        world.step_cycle()
+    start_height = robot.torso_position()[2]
+    tilt = 0.0
+    for _ in range(int(seconds / sim.physics.CYCLE_SECONDS)):
+        world.step_cycle()
+        tilt = max(tilt, math.degrees(math.acos(min(1.0, float(robot.torso_up()[2])))))
+    drop = start_height - robot.torso_position()[2]
+    world.close()
+    return drop, tilt
+
+
+def fidelity_checks() -> dict[str, bool]:
+    """The assertions of tests/test_fidelity.py, evaluated (empty without the recordings)."""
+    from sim.fidelity import load_recording, replay
+
+    folder = TRACES / "fidelity"
+    if not folder.exists():
+        return {}
+
+    def run(motion: str):
+        return replay(
+            load_recording(folder / f"{motion}.jsonl"), substeps=sim.session.BASE_SUBSTEPS
+        )
+
+    checks = {}
+    c = run("stand_t0")
+    checks["stand"] = bool(
+        c.height_error.max() < 0.01
+        and c.height_error.mean() < 0.003
+        and abs(c.sim_force.mean() - c.real_force.mean()) < 2.0
+        and c.sim_turn.max() < 3.0
+    )
+    for motion in ("crouch_t0", "crouch_t4"):
+        c = run(motion)
+        checks[motion] = bool(
+            c.height_error.mean() < 0.01
+            and c.height_error.max() < 0.02
+            and abs(c.sim_height.min() - c.real_height.min()) < 0.01
+            and c.sim_turn.max() < 5.0
+        )
+    c = run("fall_t0")
+    checks["fall"] = bool(
+        abs(c.sim_height[-1] - c.real_height[-1]) < 0.05
+        and abs(c.sim_turn[-1] - c.real_turn[-1]) < 20.0
+        and c.height_error.mean() < 0.02
+    )
+    c = run("swing_t0")  # an expected failure today: the real robot falls, ours stays up
+    checks["swing_falls"] = bool(
+        c.sim_height[-1] < 0.25 and abs(c.sim_turn[-1] - c.real_turn[-1]) < 35.0
+    )
+    return checks
+
+
+def report_variant(name: str, cycles: int) -> None:
+    with VARIANTS[name]():
+        print(f"step_ms[{name},robots=1]: {step_ms(1, cycles):.2f}", flush=True)
+        print(f"step_ms[{name},robots=22]: {step_ms(22, max(20, cycles // 10)):.2f}", flush=True)
+        for robot_type in (0, 4):
+            drop, tilt = idle_stance(robot_type)
+            print(f"idle_height_drop_m[{name},type={robot_type}]: {drop:.4f}")
+            print(f"idle_max_tilt_deg[{name},type={robot_type}]: {tilt:.2f}", flush=True)
+        for check, passed in fidelity_checks().items():
+            print(f"fidelity_{check}[{name}]: {int(passed)}", flush=True)
+
+
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__)
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cycles", type=int, default=500)
+    parser.add_argument("--split", action="store_true", help="Bullet's step split, 22 robots")
+    parser.add_argument("--variants", action="store_true", help="every variant in VARIANTS")
+    parser.add_argument("--variant", choices=sorted(VARIANTS), help="one variant")
+    parser.add_argument("--pytest", nargs="+", metavar="ARG", help="run pytest in --variant")
     args = parser.parse_args()
+    if args.pytest:
+        import pytest
+
+        with VARIANTS[args.variant or "current"]():
+            raise SystemExit(pytest.main(args.pytest))
+    if args.split:
+        for name, value in bullet_split().items():
+            print(f"bullet_split[{name}]: {value:.3f}")
+        return
+    if args.variants or args.variant:
+        for name in [args.variant] if args.variant else list(VARIANTS):
+            report_variant(name, args.cycles)
+        return
     for substeps in (1, 2, 4):
         for robots in (1, 22):
             cycles = args.cycles if robots == 1 else max(50, args.cycles // 10)

@@ -56,6 +56,8 @@ class _Client:
     outbox: bytearray = field(default_factory=bytearray)
     agent_id: int | None = None
     synced: bool = True
+    #: whether the selector also waits for this socket to take more output
+    watching_writes: bool = False
 
 
 class SoccerServer:
@@ -261,8 +263,11 @@ class SoccerServer:
                 return
             sent = 0
         del client.outbox[:sent]
-        events = selectors.EVENT_READ | (selectors.EVENT_WRITE if client.outbox else 0)
-        self.selector.modify(client.sock, events, client)
+        pending = bool(client.outbox)
+        if pending != client.watching_writes:  # a system call only when interest changes
+            events = selectors.EVENT_READ | (selectors.EVENT_WRITE if pending else 0)
+            self.selector.modify(client.sock, events, client)
+            client.watching_writes = pending
 
     def _drop(self, client: _Client, reason: str | None) -> None:
         if reason:

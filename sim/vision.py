@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -81,6 +81,16 @@ class VisibleRobot:
     team: str
     unum: int
     parts: Mapping[str, Vec3]
+    #: the parts present, in ``PLAYER_PARTS`` order, and their positions as one (n, 3) array:
+    #: built once, as every viewer of this cycle stacks the same rows
+    part_names: tuple[str, ...] = field(init=False, repr=False, compare=False)
+    points: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        names = tuple(part for part in PLAYER_PARTS if part in self.parts)
+        points = np.asarray([self.parts[part] for part in names], dtype=float).reshape(-1, 3)
+        object.__setattr__(self, "part_names", names)
+        object.__setattr__(self, "points", points)
 
 
 class VisionSensor:
@@ -164,19 +174,16 @@ class VisionSensor:
     ) -> tuple[NDArray[np.float64], list[int], list[str]]:
         """All point objects in message order: landmarks, ball, then robot parts; for the parts
         also which robot (index into ``robots``) and which part each row is."""
-        rows: list[Sequence[float]] = []
+        blocks = [_LANDMARK_POINTS]
+        if ball is not None:
+            blocks.append(np.asarray(ball, dtype=float).reshape(1, 3))
         owners: list[int] = []
         parts: list[str] = []
-        if ball is not None:
-            rows.append(ball)
         for i, robot in enumerate(robots):
-            for part in PLAYER_PARTS:
-                if part in robot.parts:
-                    rows.append(robot.parts[part])
-                    owners.append(i)
-                    parts.append(part)
-        extra = np.asarray(rows, dtype=float).reshape(-1, 3)
-        return np.vstack([_LANDMARK_POINTS, extra]), owners, parts
+            blocks.append(robot.points)
+            owners.extend([i] * len(robot.part_names))
+            parts.extend(robot.part_names)
+        return np.vstack(blocks), owners, parts
 
     def _see_objects(
         self,
@@ -194,9 +201,12 @@ class VisionSensor:
         far = np.einsum("ij,ij->i", rel, rel) > MIN_DISTANCE**2
         seen = far & self._in_cone(phi, theta)
         distance, phi, theta = self._noisy(distance, phi, theta)
+        # tolist(): Python floats at once, not one numpy scalar per element
         return [
-            Polar(float(d), float(p), float(t)) if s else None
-            for d, p, t, s in zip(distance, phi, theta, seen, strict=True)
+            Polar(d, p, t) if s else None
+            for d, p, t, s in zip(
+                distance.tolist(), phi.tolist(), theta.tolist(), seen.tolist(), strict=True
+            )
         ]
 
     def _in_cone(self, phi: NDArray[np.float64], theta: NDArray[np.float64]) -> NDArray[np.bool_]:
@@ -233,11 +243,8 @@ class VisionSensor:
         distance = np.sqrt(np.einsum("ijk,ijk->ij", ends, ends))
         distance, phi, theta = self._noisy(distance, phi, theta)
         return [
-            (
-                Polar(float(distance[i, 0]), float(phi[i, 0]), float(theta[i, 0])),
-                Polar(float(distance[i, 1]), float(phi[i, 1]), float(theta[i, 1])),
-            )
-            for i in range(ends.shape[0])
+            (Polar(d[0], p[0], t[0]), Polar(d[1], p[1], t[1]))
+            for d, p, t in zip(distance.tolist(), phi.tolist(), theta.tolist(), strict=True)
         ]
 
 
