@@ -1,4 +1,4 @@
-"""Leg inverse kinematics of the simulated NAO, every robot type, closed form (numpy only).
+"""Leg inverse kinematics of the simulated NAO, every robot type, closed form plus Newton steps.
 
 Each leg is six hinges (``world.nao_model``): lj1 hip yaw-pitch about the 45-degree axis
 (-s, 0, +-s), lj2 hip roll (y), lj3 hip pitch (x), lj4 knee (x), lj5 ankle pitch (x), lj6
@@ -23,6 +23,13 @@ convenience :meth:`LegIK.solve_sole` takes the *sole point* (the point of the so
 ankle-roll anchor) in the usual ego axes (x forward, y left, z up), which is what a walk plans.
 Results are clipped to the joint limits; :class:`LegSolution` says whether clipping or an
 out-of-reach target changed anything.
+
+Speed: a walking agent solves both legs every cycle, so the arithmetic is plain floats on
+tuples (rotations as row-major 9-tuples), not numpy: on 3-vectors and 3x3 matrices numpy's
+per-call cost is several times the arithmetic. Products with the elementary rotations are
+written out (a turn about x only mixes two columns), and every constant of a leg is computed
+once per robot type. ``numpy`` appears only at the public interface (4x4 transforms in,
+positions out).
 """
 
 from __future__ import annotations
@@ -48,38 +55,111 @@ __all__ = [
 
 Side = Literal["left", "right"]
 Matrix = NDArray[np.float64]
+Vec3 = tuple[float, float, float]
+#: a 3x3 rotation as a row-major 9-tuple
+Rot = tuple[float, float, float, float, float, float, float, float, float]
 
 #: Joint numbers of a leg, in chain order.
 LEG_JOINTS = (1, 2, 3, 4, 5, 6)
+_IDENTITY: Rot = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
 
 
-def _rx(angle: float) -> Matrix:
+# ---------------------------------------------------------------------- 3x3 helpers (floats)
+def _mul(a: Rot, b: Rot) -> Rot:
+    """a @ b."""
+    a0, a1, a2, a3, a4, a5, a6, a7, a8 = a
+    b0, b1, b2, b3, b4, b5, b6, b7, b8 = b
+    return (
+        a0 * b0 + a1 * b3 + a2 * b6, a0 * b1 + a1 * b4 + a2 * b7, a0 * b2 + a1 * b5 + a2 * b8,
+        a3 * b0 + a4 * b3 + a5 * b6, a3 * b1 + a4 * b4 + a5 * b7, a3 * b2 + a4 * b5 + a5 * b8,
+        a6 * b0 + a7 * b3 + a8 * b6, a6 * b1 + a7 * b4 + a8 * b7, a6 * b2 + a7 * b5 + a8 * b8,
+    )  # fmt: skip
+
+
+def _apply(r: Rot, v: Vec3) -> Vec3:
+    """r @ v."""
+    x, y, z = v
+    return (
+        r[0] * x + r[1] * y + r[2] * z,
+        r[3] * x + r[4] * y + r[5] * z,
+        r[6] * x + r[7] * y + r[8] * z,
+    )
+
+
+def _apply_t(r: Rot, v: Vec3) -> Vec3:
+    """r.T @ v."""
+    x, y, z = v
+    return (
+        r[0] * x + r[3] * y + r[6] * z,
+        r[1] * x + r[4] * y + r[7] * z,
+        r[2] * x + r[5] * y + r[8] * z,
+    )
+
+
+def _times_rx(r: Rot, angle: float) -> Rot:
+    """r @ Rx(angle): only the y and z columns change."""
     c, s = math.cos(angle), math.sin(angle)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    return (
+        r[0], r[1] * c + r[2] * s, r[2] * c - r[1] * s,
+        r[3], r[4] * c + r[5] * s, r[5] * c - r[4] * s,
+        r[6], r[7] * c + r[8] * s, r[8] * c - r[7] * s,
+    )  # fmt: skip
 
 
-def _ry(angle: float) -> Matrix:
+def _times_ry(r: Rot, angle: float) -> Rot:
+    """r @ Ry(angle): only the x and z columns change."""
     c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    return (
+        r[0] * c - r[2] * s, r[1], r[0] * s + r[2] * c,
+        r[3] * c - r[5] * s, r[4], r[3] * s + r[5] * c,
+        r[6] * c - r[8] * s, r[7], r[6] * s + r[8] * c,
+    )  # fmt: skip
 
 
-def _rz(angle: float) -> Matrix:
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+@dataclass(frozen=True, slots=True)
+class _AxisTurn:
+    """Rotations about one fixed unit axis (Rodrigues), with K and K^2 computed once."""
+
+    k: Rot
+    k2: Rot
+
+    @classmethod
+    def about(cls, axis: Vec3) -> _AxisTurn:
+        x, y, z = axis
+        k = (0.0, -z, y, z, 0.0, -x, -y, x, 0.0)
+        return cls(k, _mul(k, k))
+
+    def rotation(self, angle: float) -> Rot:
+        """I + sin(a) K + (1 - cos(a)) K^2."""
+        s, t = math.sin(angle), 1.0 - math.cos(angle)
+        k, k2 = self.k, self.k2
+        return tuple(  # type: ignore[return-value]
+            (1.0 if i % 4 == 0 else 0.0) + s * k[i] + t * k2[i] for i in range(9)
+        )
 
 
-def _axis_rotation(axis: Matrix, angle: float) -> Matrix:
-    """Rodrigues: rotation by ``angle`` about the unit vector ``axis``."""
-    x, y, z = axis
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
+def _rpy(roll: float, pitch: float, yaw: float) -> Rot:
+    """Rz(yaw) @ Ry(pitch) @ Rx(roll), row-major."""
+    cr, sr = math.cos(roll), math.sin(roll)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return (
+        cy * cp, -sy * cr + cy * sp * sr, sy * sr + cy * sp * cr,
+        sy * cp, cy * cr + sy * sp * sr, -cy * sr + sy * sp * cr,
+        -sp, cp * sr, cp * cr,
+    )  # fmt: skip
+
+
+def _ego_to_native_rotation(r: Rot) -> Rot:
+    """E @ r @ E.T for E = :data:`_EGO_TO_NATIVE` (native x = -ego y, native y = ego x)."""
+    return (r[4], -r[3], -r[5], -r[1], r[0], r[2], -r[7], r[6], r[8])
 
 
 def rotation_rpy(roll: float, pitch: float, yaw: float) -> Matrix:
     """Foot orientation in ego axes (x forward, y left, z up) from roll about x, pitch about y
     (positive = toes down) and yaw about z (positive = toes turned left), radians, applied
     yaw first then pitch then roll in the turned frame (R = Rz(yaw) Ry(pitch) Rx(roll))."""
-    return _rz(yaw) @ _ry(pitch) @ _rx(roll)
+    return np.array(_rpy(roll, pitch, yaw)).reshape(3, 3)
 
 
 #: Native (x right, y forward, z up) from ego (x forward, y left, z up) axes: native = E @ ego.
@@ -104,19 +184,30 @@ class LegSolution:
 
 @dataclass(frozen=True, slots=True)
 class _Leg:
-    """The constant geometry of one leg (native frame, zero pose)."""
+    """The constant geometry of one leg (native frame, zero pose), plain floats."""
 
     names: tuple[str, ...]
-    hip: Matrix
-    yaw_pitch_axis: Matrix
-    pitch_offset: Matrix  # hip -> hip-pitch anchor (zero on types 0, 2, 4)
-    thigh: Matrix  # hip-pitch anchor -> knee anchor
-    shank: Matrix  # knee -> ankle-pitch anchor
-    ankle: Matrix  # ankle-pitch -> ankle-roll anchor
-    foot: Matrix  # ankle-roll anchor -> foot body centre
-    sole: Matrix  # ankle-roll anchor -> sole point (straight down to the sole)
-    low_deg: Matrix
-    high_deg: Matrix
+    hip: Vec3
+    yaw_pitch_axis: Vec3
+    yaw_pitch: _AxisTurn  # rotations about the yaw-pitch axis
+    pitch_offset: Vec3  # hip -> hip-pitch anchor (zero on types 0, 2, 4)
+    thigh: Vec3  # hip-pitch anchor -> knee anchor
+    shank: Vec3  # knee -> ankle-pitch anchor
+    ankle: Vec3  # ankle-pitch -> ankle-roll anchor
+    foot: Vec3  # ankle-roll anchor -> foot body centre
+    sole: Vec3  # ankle-roll anchor -> sole point (straight down to the sole)
+    low_deg: tuple[float, ...]
+    high_deg: tuple[float, ...]
+    # derived once: the sagittal-plane triangle of step 2 (y, z of the thigh incl. the hip-pitch
+    # offset, and of the shank), its side lengths and directions, lj1's range in radians
+    thigh_yz: tuple[float, float]
+    shank_yz: tuple[float, float]
+    thigh_length: float
+    shank_length: float
+    thigh_angle: float
+    shank_angle: float
+    yaw_pitch_range: tuple[float, float]
+    refine: bool  # whether the closed form is only a start (hip-pitch anchor offset)
 
 
 class LegIK:
@@ -148,18 +239,30 @@ class LegIK:
             raise ValueError("leg IK expects the leg's offsets in the y-z plane")
         roll_anchor = anchors[5]
         sole_z = foot.centre[2] - foot.size[2] / 2
+        thigh = (offsets[0] + offsets[1])[1:]
+        shank = offsets[2][1:]
+        axis = _vec(axes[0])
         return _Leg(
             names=tuple(j.perceptor for j in joints),
-            hip=anchors[0],
-            yaw_pitch_axis=axes[0],
-            pitch_offset=offsets[0],
-            thigh=offsets[1],
-            shank=offsets[2],
-            ankle=offsets[3],
-            foot=np.array(foot.centre) - roll_anchor,
-            sole=np.array([0.0, 0.0, sole_z - roll_anchor[2]]),
-            low_deg=np.array([j.min_deg for j in joints]),
-            high_deg=np.array([j.max_deg for j in joints]),
+            hip=_vec(anchors[0]),
+            yaw_pitch_axis=axis,
+            yaw_pitch=_AxisTurn.about(axis),
+            pitch_offset=_vec(offsets[0]),
+            thigh=_vec(offsets[1]),
+            shank=_vec(offsets[2]),
+            ankle=_vec(offsets[3]),
+            foot=_vec(np.array(foot.centre) - roll_anchor),
+            sole=(0.0, 0.0, float(sole_z - roll_anchor[2])),
+            low_deg=tuple(float(j.min_deg) for j in joints),
+            high_deg=tuple(float(j.max_deg) for j in joints),
+            thigh_yz=(float(thigh[0]), float(thigh[1])),
+            shank_yz=(float(shank[0]), float(shank[1])),
+            thigh_length=math.hypot(*thigh),
+            shank_length=math.hypot(*shank),
+            thigh_angle=math.atan2(thigh[1], thigh[0]),
+            shank_angle=math.atan2(shank[1], shank[0]),
+            yaw_pitch_range=(math.radians(joints[0].min_deg), math.radians(joints[0].max_deg)),
+            refine=bool(np.any(offsets[0])),
         )
 
     # ------------------------------------------------------------------ geometry helpers
@@ -169,12 +272,13 @@ class LegIK:
 
     def hip_position(self, side: Side) -> Matrix:
         """The hip point (where the three hip axes meet) in ego axes relative to the torso."""
-        return _EGO_TO_NATIVE.T @ self._legs[side].hip
+        return _EGO_TO_NATIVE.T @ np.array(self._legs[side].hip)
 
     def sole_position_zero(self, side: Side) -> Matrix:
         """The sole point in the zero pose (legs straight), ego axes relative to the torso."""
         leg = self._legs[side]
-        native = leg.hip + leg.pitch_offset + leg.thigh + leg.shank + leg.ankle + leg.sole
+        parts = (leg.hip, leg.pitch_offset, leg.thigh, leg.shank, leg.ankle, leg.sole)
+        native = np.sum([np.array(p) for p in parts], axis=0)
         return _EGO_TO_NATIVE.T @ native
 
     def leg_length(self, side: Side) -> float:
@@ -186,9 +290,11 @@ class LegIK:
         """Angles that put the foot body's centre at ``foot_transform`` (4x4, native frame,
         relative to the torso, as :func:`world.kinematics.body_transforms` reports it)."""
         leg = self._legs[side]
-        rotation = np.asarray(foot_transform[:3, :3], dtype=float)
-        roll_anchor = np.asarray(foot_transform[:3, 3], dtype=float) - rotation @ leg.foot
-        return self._solve(leg, rotation, roll_anchor)
+        rows = np.asarray(foot_transform, dtype=float)[:3].tolist()
+        rotation: Rot = (*rows[0][:3], *rows[1][:3], *rows[2][:3])  # type: ignore[assignment]
+        fx, fy, fz = _apply(rotation, leg.foot)
+        roll_anchor = (rows[0][3] - fx, rows[1][3] - fy, rows[2][3] - fz)
+        return _solve(leg, rotation, roll_anchor)
 
     def solve_sole(
         self,
@@ -202,104 +308,120 @@ class LegIK:
         metres relative to the torso centre) with the foot turned by ``roll``, ``pitch``,
         ``yaw`` (radians, see :func:`rotation_rpy`) relative to the torso."""
         leg = self._legs[side]
-        ego_rotation = rotation_rpy(roll, pitch, yaw)
-        rotation = _EGO_TO_NATIVE @ ego_rotation @ _EGO_TO_NATIVE.T
-        sole = _EGO_TO_NATIVE @ np.asarray(position, dtype=float)
-        return self._solve(leg, rotation, sole - rotation @ leg.sole)
-
-    def _solve(self, leg: _Leg, rotation: Matrix, roll_anchor: Matrix) -> LegSolution:
-        """The closed form's usual branch (ankle roll small, knee bent backwards, lj1 in
-        range); where that leaves the joint ranges, the other branches of the ankle roll and
-        the knee are tried too and the one needing the least clipping wins."""
-        best: tuple[float, Matrix, bool] | None = None
-        for branch in _BRANCHES:
-            q, reachable = self._closed_form(leg, rotation, roll_anchor, *branch)
-            if np.any(leg.pitch_offset):
-                q = _refine(leg, q, rotation, roll_anchor)
-            degrees = np.degrees(q)
-            excess = float(np.sum(np.maximum(leg.low_deg - degrees, 0.0)))
-            excess += float(np.sum(np.maximum(degrees - leg.high_deg, 0.0)))
-            if best is None or excess < best[0]:
-                best = (excess, degrees, reachable)
-            if excess == 0.0:
-                break
-        assert best is not None
-        excess, degrees, reachable = best
-        clipped = np.clip(degrees, leg.low_deg, leg.high_deg)
-        angles = dict(zip(leg.names, (float(a) for a in clipped), strict=True))
-        return LegSolution(angles, reachable, excess == 0.0)
-
-    def _closed_form(
-        self,
-        leg: _Leg,
-        rotation: Matrix,
-        roll_anchor: Matrix,
-        roll_flipped: bool = False,
-        knee_forward: bool = False,
-    ) -> tuple[Matrix, bool]:
-        """The exact solution when the hip pitch axis meets the other two (types 0, 2, 4); with
-        the hip-pitch anchor lower (types 1, 3) it treats that offset as part of the thigh,
-        exact for lj3 = 0 and a close start for :func:`_refine` otherwise."""
-        # 1. ankle roll: undo it and the hip, seen from the foot, lies in the y-z plane
-        w = rotation.T @ (leg.hip - roll_anchor)
-        q6 = math.atan2(w[0], -w[2]) if roll_flipped else math.atan2(-w[0], w[2])
-        u = _ry(q6) @ w
-        # 2. knee and ankle pitch in the sagittal plane: v = Rx(-q5) (shank + Rx(-q4) thigh)
-        v = -u[1:] - leg.ankle[1:]
-        thigh, shank = (leg.pitch_offset + leg.thigh)[1:], leg.shank[1:]
-        lt, ls, lv = math.hypot(*thigh), math.hypot(*shank), math.hypot(*v)
-        cos_gap = (lv * lv - lt * lt - ls * ls) / (2.0 * lt * ls)
-        reachable = -1.0 <= cos_gap <= 1.0
-        gap = math.acos(min(1.0, max(-1.0, cos_gap)))
-        angle_t = math.atan2(thigh[1], thigh[0])
-        angle_s = math.atan2(shank[1], shank[0])
-        # the usual branch bends the knee backwards (lj4 <= 0)
-        q4 = angle_t - angle_s + (gap if knee_forward else -gap)
-        c4, s4 = math.cos(-q4), math.sin(-q4)
-        m = shank + np.array([c4 * thigh[0] - s4 * thigh[1], s4 * thigh[0] + c4 * thigh[1]])
-        q5 = _wrap(math.atan2(m[1], m[0]) - math.atan2(v[1], v[0]))
-        # 3. the hip: R123 = Ra(q1) Ry(q2) Rx(q3)
-        r123 = rotation @ _ry(-q6) @ _rx(-(q4 + q5))
-        q1 = self._yaw_pitch(leg, r123[:, 0])
-        rest = _axis_rotation(leg.yaw_pitch_axis, -q1) @ r123
-        q2 = math.atan2(-rest[2, 0], rest[0, 0])
-        rest = _ry(-q2) @ rest
-        q3 = math.atan2(rest[2, 1], rest[1, 1])
-        return np.array([q1, q2, q3, q4, q5, q6]), reachable
-
-    @staticmethod
-    def _yaw_pitch(leg: _Leg, column: Matrix) -> float:
-        """lj1 such that Ra(-lj1) turns ``column`` into the x-z plane; of the two solutions
-        (half a turn apart) the one nearer the joint's range."""
-        k = leg.yaw_pitch_axis
-        cross_y = float(np.cross(k, column)[1])
-        phi = math.atan2(-column[1], cross_y)  # = -lj1
-        candidates = (_wrap(-phi), _wrap(-phi + math.pi))
-        low, high = math.radians(leg.low_deg[0]), math.radians(leg.high_deg[0])
-
-        def excess(q: float) -> float:
-            return max(low - q, q - high, 0.0)
-
-        return min(candidates, key=lambda q: (excess(q), abs(q)))
+        rotation = _ego_to_native_rotation(_rpy(roll, pitch, yaw))
+        forward, left, up = (float(v) for v in position)
+        sx, sy, sz = _apply(rotation, leg.sole)
+        return _solve(leg, rotation, (-left - sx, forward - sy, up - sz))
 
 
-def _leg_forward(leg: _Leg, q: Matrix) -> tuple[Matrix, Matrix, Matrix, Matrix]:
+def _vec(values) -> Vec3:
+    return (float(values[0]), float(values[1]), float(values[2]))
+
+
+def _solve(leg: _Leg, rotation: Rot, roll_anchor: Vec3) -> LegSolution:
+    """The closed form's usual branch (ankle roll small, knee bent backwards, lj1 in range);
+    where that leaves the joint ranges, the other branches of the ankle roll and the knee are
+    tried too and the one needing the least clipping wins."""
+    best: tuple[float, list[float], bool] | None = None
+    low, high = leg.low_deg, leg.high_deg
+    for roll_flipped, knee_forward in _BRANCHES:
+        q, reachable = _closed_form(leg, rotation, roll_anchor, roll_flipped, knee_forward)
+        if leg.refine:
+            q = _refine(leg, q, rotation, roll_anchor)
+        degrees = [math.degrees(a) for a in q]
+        excess = sum(max(lo - d, 0.0) for lo, d in zip(low, degrees, strict=True))
+        excess += sum(max(d - hi, 0.0) for hi, d in zip(high, degrees, strict=True))
+        if best is None or excess < best[0]:
+            best = (excess, degrees, reachable)
+        if excess == 0.0:
+            break
+    assert best is not None
+    excess, degrees, reachable = best
+    angles = {
+        name: min(max(d, lo), hi)
+        for name, d, lo, hi in zip(leg.names, degrees, low, high, strict=True)
+    }
+    return LegSolution(angles, reachable, excess == 0.0)
+
+
+def _closed_form(
+    leg: _Leg,
+    rotation: Rot,
+    roll_anchor: Vec3,
+    roll_flipped: bool = False,
+    knee_forward: bool = False,
+) -> tuple[list[float], bool]:
+    """The exact solution when the hip pitch axis meets the other two (types 0, 2, 4); with
+    the hip-pitch anchor lower (types 1, 3) it treats that offset as part of the thigh, exact
+    for lj3 = 0 and a close start for :func:`_refine` otherwise."""
+    # 1. ankle roll: undo it and the hip, seen from the foot, lies in the y-z plane
+    hip = leg.hip
+    wx, wy, wz = _apply_t(
+        rotation, (hip[0] - roll_anchor[0], hip[1] - roll_anchor[1], hip[2] - roll_anchor[2])
+    )
+    q6 = math.atan2(wx, -wz) if roll_flipped else math.atan2(-wx, wz)
+    # u = Ry(q6) w; only its y and z are needed (u_y = w_y)
+    uz = -math.sin(q6) * wx + math.cos(q6) * wz
+    # 2. knee and ankle pitch in the sagittal plane: v = Rx(-q5) (shank + Rx(-q4) thigh)
+    v0, v1 = -wy - leg.ankle[1], -uz - leg.ankle[2]
+    lt, ls, lv = leg.thigh_length, leg.shank_length, math.hypot(v0, v1)
+    cos_gap = (lv * lv - lt * lt - ls * ls) / (2.0 * lt * ls)
+    reachable = -1.0 <= cos_gap <= 1.0
+    gap = math.acos(min(1.0, max(-1.0, cos_gap)))
+    # the usual branch bends the knee backwards (lj4 <= 0)
+    q4 = leg.thigh_angle - leg.shank_angle + (gap if knee_forward else -gap)
+    c4, s4 = math.cos(-q4), math.sin(-q4)
+    (t0, t1), (s0, s1) = leg.thigh_yz, leg.shank_yz
+    m0, m1 = s0 + (c4 * t0 - s4 * t1), s1 + (s4 * t0 + c4 * t1)
+    q5 = _wrap(math.atan2(m1, m0) - math.atan2(v1, v0))
+    # 3. the hip: R123 = Ra(q1) Ry(q2) Rx(q3)
+    r123 = _times_rx(_times_ry(rotation, -q6), -(q4 + q5))
+    q1 = _yaw_pitch(leg, (r123[0], r123[3], r123[6]))
+    rest = _mul(leg.yaw_pitch.rotation(-q1), r123)
+    q2 = math.atan2(-rest[6], rest[0])
+    # (Ry(-q2) @ rest): row 1 is rest's, row 2 is (sin q2, 0, cos q2) @ rest
+    c2, s2 = math.cos(-q2), math.sin(-q2)
+    q3 = math.atan2(-s2 * rest[1] + c2 * rest[7], rest[4])
+    return [q1, q2, q3, q4, q5, q6], reachable
+
+
+def _yaw_pitch(leg: _Leg, column: Vec3) -> float:
+    """lj1 such that Ra(-lj1) turns ``column`` into the x-z plane; of the two solutions (half a
+    turn apart) the one nearer the joint's range."""
+    kx, _, kz = leg.yaw_pitch_axis
+    cross_y = kz * column[0] - kx * column[2]
+    phi = math.atan2(-column[1], cross_y)  # = -lj1
+    low, high = leg.yaw_pitch_range
+    first, second = _wrap(-phi), _wrap(-phi + math.pi)
+    key_first = (max(low - first, first - high, 0.0), abs(first))
+    key_second = (max(low - second, second - high, 0.0), abs(second))
+    return second if key_second < key_first else first
+
+
+def _leg_forward(leg: _Leg, q: list[float]) -> tuple[Rot, Vec3, list[Vec3], list[Vec3]]:
     """Forward kinematics of one leg: foot rotation, ankle-roll anchor, and every joint's
-    anchor (6, 3) and axis (6, 3) in the torso frame, for angles ``q`` (radians)."""
-    axes_local = (leg.yaw_pitch_axis, _Y, _X, _X, _X, _Y)
-    offsets = (_ZERO, _ZERO, leg.pitch_offset, leg.thigh, leg.shank, leg.ankle)
-    turns = (_axis_rotation(leg.yaw_pitch_axis, float(q[0])), _ry(q[1]), _rx(q[2]))
-    turns += (_rx(q[3]), _rx(q[4]), _ry(q[5]))
-    rotation = np.eye(3)
-    position = leg.hip
-    anchors = np.empty((6, 3))
-    axes = np.empty((6, 3))
-    for i in range(6):
-        position = position + rotation @ offsets[i]
-        anchors[i] = position
-        axes[i] = rotation @ axes_local[i]
-        rotation = rotation @ turns[i]
-    return rotation, position, anchors, axes
+    anchor and axis in the torso frame, for angles ``q`` (radians).
+
+    Joints 1 and 2 sit at the hip; each later joint's anchor is the previous one plus the
+    turned offset. An x (y) axis turned by the chain is the rotation's first (second) column.
+    """
+    hip = leg.hip
+    r = leg.yaw_pitch.rotation(q[0])
+    anchors = [hip, hip]
+    axes = [leg.yaw_pitch_axis, (r[1], r[4], r[7])]
+    r = _times_ry(r, q[1])
+    position = hip
+    for offset, angle in ((leg.pitch_offset, q[2]), (leg.thigh, q[3]), (leg.shank, q[4])):
+        ox, oy, oz = _apply(r, offset)
+        position = (position[0] + ox, position[1] + oy, position[2] + oz)
+        anchors.append(position)
+        axes.append((r[0], r[3], r[6]))
+        r = _times_rx(r, angle)
+    ox, oy, oz = _apply(r, leg.ankle)
+    position = (position[0] + ox, position[1] + oy, position[2] + oz)
+    anchors.append(position)
+    axes.append((r[1], r[4], r[7]))
+    return _times_ry(r, q[5]), position, anchors, axes
 
 
 #: Newton steps stop once position (m) and orientation errors are below this: a micrometre is
@@ -307,34 +429,77 @@ def _leg_forward(leg: _Leg, q: Matrix) -> tuple[Matrix, Matrix, Matrix, Matrix]:
 REFINE_TOLERANCE = 1e-6
 
 
-def _refine(leg: _Leg, q: Matrix, rotation: Matrix, roll_anchor: Matrix, steps: int = 8) -> Matrix:
+def _refine(
+    leg: _Leg, q: list[float], rotation: Rot, roll_anchor: Vec3, steps: int = 8
+) -> list[float]:
     """Newton steps on the full chain (geometric Jacobian) from a close start: the closed form
     is off by the small hip-pitch offset's effect only, so one or two steps reach 1e-6 m."""
     for _ in range(steps):
         current, end, anchors, axes = _leg_forward(leg, q)
-        turn = rotation @ current.T
-        error = np.concatenate(
-            [roll_anchor - end, 0.5 * np.array([turn[2, 1] - turn[1, 2],
-                                                 turn[0, 2] - turn[2, 0],
-                                                 turn[1, 0] - turn[0, 1]])]
-        )  # fmt: skip
-        if float(np.abs(error).max()) < REFINE_TOLERANCE:
+        # turn = rotation @ current.T; its skew part is the orientation error
+        t = _mul_t(rotation, current)
+        error = [
+            roll_anchor[0] - end[0],
+            roll_anchor[1] - end[1],
+            roll_anchor[2] - end[2],
+            0.5 * (t[7] - t[5]),
+            0.5 * (t[2] - t[6]),
+            0.5 * (t[3] - t[1]),
+        ]
+        if max(abs(e) for e in error) < REFINE_TOLERANCE:
             break
-        lever = end - anchors
-        linear = axes[:, [1, 2, 0]] * lever[:, [2, 0, 1]] - axes[:, [2, 0, 1]] * lever[:, [1, 2, 0]]
-        jacobian = np.vstack([linear.T, axes.T])
-        try:
-            q = q + np.linalg.solve(jacobian, error)
-        except np.linalg.LinAlgError:  # a stretched or folded leg: keep the closest so far
+        columns = []
+        for (ax, ay, az), anchor in zip(axes, anchors, strict=True):
+            lx, ly, lz = end[0] - anchor[0], end[1] - anchor[1], end[2] - anchor[2]
+            columns.append((ay * lz - az * ly, az * lx - ax * lz, ax * ly - ay * lx, ax, ay, az))
+        step = _solve_linear([list(row) for row in zip(*columns, strict=True)], error)
+        if step is None:  # a stretched or folded leg: keep the closest so far
             break
+        q = [a + d for a, d in zip(q, step, strict=True)]
     return q
+
+
+def _mul_t(a: Rot, b: Rot) -> Rot:
+    """a @ b.T."""
+    a0, a1, a2, a3, a4, a5, a6, a7, a8 = a
+    b0, b1, b2, b3, b4, b5, b6, b7, b8 = b
+    return (
+        a0 * b0 + a1 * b1 + a2 * b2, a0 * b3 + a1 * b4 + a2 * b5, a0 * b6 + a1 * b7 + a2 * b8,
+        a3 * b0 + a4 * b1 + a5 * b2, a3 * b3 + a4 * b4 + a5 * b5, a3 * b6 + a4 * b7 + a5 * b8,
+        a6 * b0 + a7 * b1 + a8 * b2, a6 * b3 + a7 * b4 + a8 * b5, a6 * b6 + a7 * b7 + a8 * b8,
+    )  # fmt: skip
+
+
+def _solve_linear(matrix: list[list[float]], rhs: list[float]) -> list[float] | None:
+    """x with matrix @ x = rhs (Gaussian elimination with partial pivoting, as LAPACK's
+    ``gesv``); None when the matrix is singular."""
+    n = len(rhs)
+    rows = [[*row, value] for row, value in zip(matrix, rhs, strict=True)]
+    for col in range(n):
+        pivot = max(range(col, n), key=lambda r: abs(rows[r][col]))
+        if rows[pivot][col] == 0.0:
+            return None
+        rows[col], rows[pivot] = rows[pivot], rows[col]
+        head = rows[col]
+        inverse = 1.0 / head[col]
+        for r in range(col + 1, n):
+            row = rows[r]
+            factor = row[col] * inverse
+            if factor != 0.0:
+                for c in range(col + 1, n + 1):
+                    row[c] -= factor * head[c]
+    x = [0.0] * n
+    for r in range(n - 1, -1, -1):
+        row = rows[r]
+        total = row[n]
+        for c in range(r + 1, n):
+            total -= row[c] * x[c]
+        x[r] = total / row[r]
+    return x
 
 
 #: (ankle roll flipped by half a turn, knee bent the other way), the usual branch first
 _BRANCHES = ((False, False), (True, False), (False, True), (True, True))
-_ZERO = np.zeros(3)
-_X = np.array([1.0, 0.0, 0.0])
-_Y = np.array([0.0, 1.0, 0.0])
 
 
 def _wrap(angle: float) -> float:

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from behaviors.ik import leg_ik, leg_ik_for, rotation_rpy
+from behaviors.ik import _solve_linear, leg_ik, leg_ik_for, rotation_rpy
 from world.kinematics import body_transforms
 from world.nao_model import ROBOT_TYPES, robot_spec
 
@@ -100,3 +100,96 @@ def test_legs_mirror_each_other():
         assert left.angles_deg[f"llj{joint}"] == pytest.approx(
             sign * right.angles_deg[f"rlj{joint}"], abs=1e-6
         )
+
+
+#: Solutions of the first (numpy) implementation, kept as the reference the plain-float one must
+#: reproduce: (robot type, side, sole position (ego), (roll, pitch, yaw), lj1..lj6 degrees).
+#: The second target of each leg is beyond lj1's range, so it also pins the clipping.
+# fmt: off
+REFERENCE_SOLUTIONS = [
+    (0, "left", (0.03, 0.07, -0.3), (0.05, -0.1, 0.2),
+     (-15.7635755929, 2.9231110357, 46.2032630437, -98.9320250768, 47.3803844718, 1.0646214073)),
+    (0, "left", (-0.04, 0.05, -0.28), (0.0, 0.08, -0.3),
+     (1.0000000000, -3.7406864670, 53.7731622428, -113.3941143857, 72.9278574263, 6.3989137573)),
+    (0, "right", (0.03, -0.07, -0.3), (-0.05, -0.1, -0.2),
+     (-15.7635755929, -2.9231110357, 46.2032630437, -98.9320250768, 47.3803844718, -1.0646214073)),
+    (0, "right", (-0.04, -0.05, -0.28), (0.0, 0.08, 0.3),
+     (1.0000000000, 3.7406864670, 53.7731622428, -113.3941143857, 72.9278574263, -6.3989137573)),
+    (1, "left", (0.03, 0.07, -0.3), (0.05, -0.1, 0.2),
+     (-15.7635755929, 2.9231110357, 61.0149167074, -115.9909788970, 49.6276846283, 1.0646214073)),
+    (1, "left", (-0.04, 0.05, -0.28), (0.0, 0.08, -0.3),
+     (1.0000000000, -3.7406864670, 69.6261627867, -127.9986673132, 71.6794098099, 6.3989137573)),
+    (1, "right", (0.03, -0.07, -0.3), (-0.05, -0.1, -0.2),
+     (-15.7635755929, -2.9231110357, 61.0149167074, -115.9909788970, 49.6276846283, -1.0646214073)),
+    (1, "right", (-0.04, -0.05, -0.28), (0.0, 0.08, 0.3),
+     (1.0000000000, 3.7406864670, 69.6261627867, -127.9986673132, 71.6794098099, -6.3989137573)),
+    (2, "left", (0.03, 0.07, -0.3), (0.05, -0.1, 0.2),
+     (-15.7635755929, 2.9231110357, 46.2032630437, -98.9320250768, 47.3803844718, 1.0646214073)),
+    (2, "left", (-0.04, 0.05, -0.28), (0.0, 0.08, -0.3),
+     (1.0000000000, -3.7406864670, 53.7731622428, -113.3941143857, 72.9278574263, 6.3989137573)),
+    (2, "right", (0.03, -0.07, -0.3), (-0.05, -0.1, -0.2),
+     (-15.7635755929, -2.9231110357, 46.2032630437, -98.9320250768, 47.3803844718, -1.0646214073)),
+    (2, "right", (-0.04, -0.05, -0.28), (0.0, 0.08, 0.3),
+     (1.0000000000, 3.7406864670, 53.7731622428, -113.3941143857, 72.9278574263, -6.3989137573)),
+    (3, "left", (0.03, 0.07, -0.3), (0.05, -0.1, 0.2),
+     (-16.7615794765, -4.0735401974, 66.9760987885, -123.9361218279, 50.8975616652, 8.0958820777)),
+    (3, "left", (-0.04, 0.05, -0.28), (0.0, 0.08, -0.3),
+     (1.0000000000, -11.3445258041, 85.3028933214, -130.0000000000, 64.1555723538, 14.2537469345)),
+    (3, "right", (0.03, -0.07, -0.3), (-0.05, -0.1, -0.2),
+     (-16.7615794765, 4.0735401974, 66.9760987885, -123.9361218279, 50.8975616652, -8.0958820777)),
+    (3, "right", (-0.04, -0.05, -0.28), (0.0, 0.08, 0.3),
+     (1.0000000000, 11.3445258041, 85.3028933214, -130.0000000000, 64.1555723538, -14.2537469345)),
+    (4, "left", (0.03, 0.07, -0.3), (0.05, -0.1, 0.2),
+     (-15.7635755929, 2.9231110357, 52.0770012133, -96.1466916816, 38.7213129070, 1.0646214073)),
+    (4, "left", (-0.04, 0.05, -0.28), (0.0, 0.08, -0.3),
+     (1.0000000000, -3.7406864670, 62.5690284467, -113.8683239596, 64.6062007963, 6.3989137573)),
+    (4, "right", (0.03, -0.07, -0.3), (-0.05, -0.1, -0.2),
+     (-15.7635755929, -2.9231110357, 52.0770012133, -96.1466916816, 38.7213129070, -1.0646214073)),
+    (4, "right", (-0.04, -0.05, -0.28), (0.0, 0.08, 0.3),
+     (1.0000000000, 3.7406864670, 62.5690284467, -113.8683239596, 64.6062007963, -6.3989137573)),
+]
+# fmt: on
+
+
+@pytest.mark.parametrize(("robot_type", "side", "position", "rpy", "expected"), REFERENCE_SOLUTIONS)
+def test_solutions_match_the_reference_implementation(robot_type, side, position, rpy, expected):
+    solution = leg_ik_for(robot_type).solve_sole(side, position, *rpy)
+    assert list(solution.angles_deg.values()) == pytest.approx(expected, abs=1e-9)
+
+
+@pytest.mark.parametrize("robot_type", [0, 2, 4])
+def test_closed_form_is_exact_to_a_nanometre(robot_type):
+    """Where the hip axes meet (no Newton steps), FK(IK) meets the target to 1e-9 m."""
+    spec = robot_spec(robot_type)
+    ik = leg_ik_for(robot_type)
+    rng = np.random.default_rng(7 + robot_type)
+    for side in ("left", "right"):
+        names = ik.joint_names(side)
+        foot = f"{side[0]}foot"
+        for _ in range(20):
+            target = body_transforms(spec, _random_leg_angles(spec, names, rng))[foot]
+            solution = ik.solve(side, target)
+            reached = body_transforms(spec, solution.angles_deg)[foot]
+            assert np.abs(reached[:3, 3] - target[:3, 3]).max() < 1e-9
+            assert np.abs(reached[:3, :3] - target[:3, :3]).max() < 1e-9
+
+
+def test_linear_solver_matches_numpy_and_reports_singular_matrices():
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        matrix = rng.normal(size=(6, 6))
+        rhs = rng.normal(size=6)
+        got = _solve_linear(matrix.tolist(), rhs.tolist())
+        assert got == pytest.approx(np.linalg.solve(matrix, rhs).tolist(), abs=1e-9)
+    singular = rng.normal(size=(6, 6))
+    singular[:, 2] = 0.0
+    assert _solve_linear(singular.tolist(), [1.0] * 6) is None
+
+
+def test_rotation_rpy_is_the_product_of_elementary_rotations():
+    roll, pitch, yaw = 0.3, -0.7, 1.9
+    c, s = math.cos, math.sin
+    rx = np.array([[1, 0, 0], [0, c(roll), -s(roll)], [0, s(roll), c(roll)]])
+    ry = np.array([[c(pitch), 0, s(pitch)], [0, 1, 0], [-s(pitch), 0, c(pitch)]])
+    rz = np.array([[c(yaw), -s(yaw), 0], [s(yaw), c(yaw), 0], [0, 0, 1]])
+    assert np.abs(rotation_rpy(roll, pitch, yaw) - rz @ ry @ rx).max() < 1e-15
