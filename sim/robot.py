@@ -399,17 +399,22 @@ class SimRobot:
             self.body_id, self._joint_indices, physicsClientId=self._client
         )
         window = self.physics.servo_window
-        # min(max(x, low), high) is numpy.clip's result for one float, inlined: hot path
-        bounds = self._bounds
-        self._cycle_start = [
-            min(max(t, low), high) for t, (low, high) in zip(self._targets, bounds, strict=True)
-        ]
-        self._targets = [
-            min(max(min(max(t + v * CYCLE_SECONDS, s[0] - window), s[0] + window), low), high)
-            for t, v, s, (low, high) in zip(
-                self._targets, self._speeds, states, bounds, strict=True
-            )
-        ]
+        # numpy.clip(x, low, high) for one float is min(max(x, low), high); written out as
+        # conditionals (same results, ties included) because this runs per joint every cycle
+        cycle_start, targets = [], []
+        for t, v, state, (low, high) in zip(
+            self._targets, self._speeds, states, self._bounds, strict=True
+        ):
+            c = low if low > t else t
+            cycle_start.append(high if high < c else c)
+            x = t + v * CYCLE_SECONDS
+            edge = state[0] - window
+            x = edge if edge > x else x
+            edge = state[0] + window
+            x = edge if edge < x else x
+            x = low if low > x else x
+            targets.append(high if high < x else x)
+        self._cycle_start, self._targets = cycle_start, targets
 
     def before_substep(self, fraction: float) -> None:
         """Aim the motors at where the joint should be as this substep starts (``fraction`` of
