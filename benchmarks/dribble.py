@@ -85,14 +85,21 @@ def start_dribble_episode(
     robot_type: int, direction_deg: float = 0.0, seed: int = 0
 ) -> tuple[Session, LocalAgent]:
     """A session with one robot standing ``START_BEHIND`` m behind the ball at the field
-    centre, facing ``direction_deg``, in PlayOn: the kick-in-motion episode's start."""
+    centre, facing ``direction_deg``, in PlayOn: the kick-in-motion episode's start.
+
+    A beam may not cross the centre line, so the robot is beamed to the centre (or as far
+    back as the direction needs to keep it in its own half) and, once standing, the ball is
+    placed ``START_BEHIND`` m ahead of its torso along ``direction_deg``."""
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     h = math.radians(direction_deg)
-    beam = (-START_BEHIND * math.cos(h), -START_BEHIND * math.sin(h), direction_deg)
+    beam = (-START_BEHIND * max(math.cos(h), 0.0), -START_BEHIND * math.sin(h), direction_deg)
     agent = LocalAgent.join(session, "Local", 1, robot_type, beam=beam)
     agent.trainer("(playMode PlayOn)")
     agent.rise_to_stand()
-    agent.trainer(f"(ball (pos 0 0 {BALL_Z}) (vel 0 0 0))")
+    x, y, _ = agent.robot.torso_position()
+    bx, by = x + START_BEHIND * math.cos(h), y + START_BEHIND * math.sin(h)
+    agent.trainer(f"(ball (pos {bx:.4f} {by:.4f} {BALL_Z}) (vel 0 0 0))")
+    agent.run("pose", "stand")  # trainer commands act on the next cycle
     return session, agent
 
 
@@ -134,6 +141,7 @@ def run_dribble(
     ux, uy = math.cos(h), math.sin(h)
     holding = _Holding()
     lost = False
+    start_x, start_y, _ = session.ball.position()
     try:
         for cycle in range(round(limit / CYCLE)):
             agent.run("dribble", kind, direction_deg, foot)
@@ -154,7 +162,7 @@ def run_dribble(
                 result.ball_losses += 1
             elif lost and gap < REGAINED_DISTANCE and ahead > 0.0:
                 lost = False
-            result.distance = ux * bx + uy * by
+            result.distance = ux * (bx - start_x) + uy * (by - start_y)
             if agent.robot.has_fallen():
                 result.fell = True
                 break
