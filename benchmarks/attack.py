@@ -1,0 +1,89 @@
+"""Can a player score? The whole agent (world model, strategy, skills) attacking an empty field.
+
+One agent of the left team (unum 10, the centre forward) joins an in-process session, beams to
+its formation place before kick-off and stands; then the referee gives the left team the
+kick-off and the game runs until the left team scores or ``--seconds`` of game time pass. The
+agent sees only its perceptions and acts only through its effectors, exactly as over TCP (the
+same bytes); nothing helps it along. Per trial: scored or not, game seconds from kick-off to the
+goal, falls.
+
+Run: ``.venv/bin/python benchmarks/attack.py [--trials 5] [--seconds 60] [--type 0] [--seed 0]``;
+prints ``attack_goals``, ``attack_goal_rate``, ``attack_time_to_goal_s_median`` and
+``attack_falls``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from agent.agent import Agent, AgentConfig
+from sim.session import Session, SessionConfig
+
+CYCLE_SECONDS = 0.02
+#: cycles before kick-off: beam, stand up, settle
+PREPARE_CYCLES = 100
+
+
+@dataclass(frozen=True)
+class AttackResult:
+    scored: bool
+    #: game seconds from kick-off to the goal (None: no goal)
+    time_to_goal_s: float | None
+    falls: int
+
+
+def run_attack(robot_type: int, seed: int, seconds: float, unum: int = 10) -> AttackResult:
+    """One trial; see the module docstring."""
+    session = Session(SessionConfig(seed=seed))
+    try:
+        agent = Agent(AgentConfig("Attackers", unum, robot_type))
+        slot = session.add_agent()
+        session.handle_message(slot, agent.greeting())
+        for _ in range(PREPARE_CYCLES):
+            session.step()
+            session.handle_message(slot, agent.think(session.perception(slot)))
+        session.trainer("(playMode KickOff_Left)")
+        robot = session.agents[slot].robot
+        falls, was_fallen = 0, False
+        for cycle in range(round(seconds / CYCLE_SECONDS)):
+            session.step()
+            session.handle_message(slot, agent.think(session.perception(slot)))
+            fallen = robot.has_fallen()
+            falls += fallen and not was_fallen
+            was_fallen = fallen
+            if session.referee.score_left > 0:
+                return AttackResult(True, (cycle + 1) * CYCLE_SECONDS, falls)
+        return AttackResult(False, None, falls)
+    finally:
+        session.close()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--trials", type=int, default=5)
+    parser.add_argument("--seconds", type=float, default=60.0, help="game seconds per trial")
+    parser.add_argument("--type", type=int, default=0, help="robot type 0-4")
+    parser.add_argument("--seed", type=int, default=0)
+    args = parser.parse_args()
+    results = []
+    for k in range(args.trials):
+        result = run_attack(args.type, args.seed + k, args.seconds)
+        results.append(result)
+        time_text = f"{result.time_to_goal_s:.1f} s" if result.scored else "no goal"
+        print(f"# trial {k}: {time_text}, falls {result.falls}", flush=True)
+    times = [r.time_to_goal_s for r in results if r.time_to_goal_s is not None]
+    print(f"attack_goals: {len(times)}/{len(results)}")
+    print(f"attack_goal_rate: {len(times) / len(results):.2f}")
+    median = f"{statistics.median(times):.1f}" if times else "nan"
+    print(f"attack_time_to_goal_s_median: {median}")
+    print(f"attack_falls: {sum(r.falls for r in results)}")
+
+
+if __name__ == "__main__":
+    main()
