@@ -6,21 +6,19 @@ calibrated range of ``kicks.yaml``, 3-9 m asked by the issue) or ``"long"`` (the
 kick). Everything comes from the world model (ball estimate, own pose, joint angles): the skill
 never sees the simulator.
 
-Phases, one per cycle:
+Phases:
 
 1. ``approach``: the ``walk`` skill to the spot from which the chosen foot lies behind the
-   ball on the line ball -> target, facing the target. The foot is chosen once, at the start:
-   the one on the side where the ball lies, so the robot steps less across.
-2. ``align``: small ``walk_velocity`` corrections from the measured error between the ball and
-   where the kick expects it relative to the foot (``ball_gap_m``, ``ball_side_m`` of the kick),
-   both measured in the robot's own frame from this cycle's joint angles, so that the walk's
-   stopping error (a few cm) does not decide where the foot meets the ball. Then it stands
-   still.
+   ball on the line ball -> target, facing the target. The foot is the one whose spot is
+   nearer, chosen anew until the robot is close to the ball.
+2. ``settle``: stand still (``walk_velocity`` 0, then the stand pose), then measure where the
+   ball lies against where the kick expects it (``ball_gap_m``, ``ball_side_m`` of the kick,
+   relative to the kicking foot in the stand pose) in the robot's own frame: close enough,
+   kick; else ``back_off`` (walk to a spot behind) and approach again.
 3. ``kick``: the ``kick`` skill with the strength that the kick's calibration table gives for
    the distance.
 
-If the ball moves away (more than :data:`LOST_DISTANCE_M` from where it should lie) before the
-kick starts, the skill walks again. Once the kick has started it plays to its end. The head
+Once the kick has started it plays to its end. The head
 looks down while approaching: a ball at the toes lies about 65 deg below the horizon, outside a
 level head's 120 deg view cone.
 """
@@ -29,30 +27,37 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 
 from behaviors.kick import FEET, KickMotion, kick_motion
+from behaviors.poses import get_pose
 from behaviors.skill import Skill, SkillContext
 from world.field_geometry import BALL_RADIUS
+from world.kinematics import body_transforms
+from world.nao_model import robot_spec
 
 #: Neck pitch (deg, negative = down) while approaching and aligning.
 HEAD_PITCH_DEG = -45.0
-#: The kick starts once the ball lies this close (m) to where the kick expects it, along and
-#: across the foot, and the robot faces the target within ``ALIGNED_HEADING_DEG``.
-ALIGNED_ALONG_M = 0.02
-ALIGNED_ACROSS_M = 0.015
-ALIGNED_HEADING_DEG = 5.0
-#: Fine alignment: walk speed (m/s, deg/s) per metre / degree of error, and its caps.
-ALIGN_GAIN = 1.5
-ALIGN_TURN_GAIN = 1.5
-ALIGN_MAX_SPEED = 0.12
-ALIGN_MAX_TURN_DEG = 20.0
-#: Beyond this error (m) or heading error (deg) alignment gives way to walking again.
-LOST_DISTANCE_M = 0.2
-LOST_HEADING_DEG = 25.0
-#: Fine alignment rounds (correct, stand still, measure) before kicking with what there is.
-MAX_ALIGN_ROUNDS = 4
+#: The kick starts once the robot stands still with the ball this close (m) to where the kick
+#: expects it, along and across the foot, and facing the target within ``READY_HEADING_DEG``.
+#: Why this loose: the walk cannot make steps much shorter than a few centimetres (slower
+#: commands tread on the spot), so finer alignment by walking was measured to oscillate.
+READY_ALONG_M = 0.05
+READY_ACROSS_M = 0.04
+READY_HEADING_DEG = 12.0
+#: When the robot stopped too far off, it walks back this far (m) from the kicking spot and
+#: approaches again (the walk counts a target within 4 cm as reached and would not move).
+BACK_OFF_M = 0.15
+#: How far (m) beyond the kicking spot the walk is sent (it stops up to 4 cm short of its
+#: target, ``behaviors.walk.ARRIVE_DISTANCE``); 3 cm had its last steps touch the ball.
+WALK_OVERSHOOT_M = 0.0
+#: Cycles in the stand pose between the walk's stop and the kick: the walk stands with other
+#: angles, and the kick's weight shift from those tipped the robot over.
+SETTLE_CYCLES = 20
+#: The kicking foot is chosen anew every cycle until the robot is this close (m) to the ball.
+CHOOSE_FOOT_DISTANCE_M = 0.6
 #: "long" asks for the strongest kick.
 LONG = "long"
 
@@ -68,18 +73,12 @@ class Alignment:
     heading_deg: float
 
     @property
-    def aligned(self) -> bool:
+    def ready(self) -> bool:
+        """Close enough to kick."""
         return (
-            abs(self.along_m) < ALIGNED_ALONG_M
-            and abs(self.across_m) < ALIGNED_ACROSS_M
-            and abs(self.heading_deg) < ALIGNED_HEADING_DEG
-        )
-
-    @property
-    def lost(self) -> bool:
-        return (
-            math.hypot(self.along_m, self.across_m) > LOST_DISTANCE_M
-            or abs(self.heading_deg) > LOST_HEADING_DEG
+            abs(self.along_m) < READY_ALONG_M
+            and abs(self.across_m) < READY_ACROSS_M
+            and abs(self.heading_deg) < READY_HEADING_DEG
         )
 
 
@@ -91,18 +90,25 @@ def strength_for(motion: KickMotion, distance: float | str) -> float:
     return motion.strength_for(distance)
 
 
-def expected_ball_ego(context: SkillContext, foot: str, motion: KickMotion) -> np.ndarray:
-    """Where the kick wants the ball's centre now, ego frame (x forward, y left; m), from the
-    kicking foot's pose that this cycle's joint angles give."""
-    world = context.world
+def expected_ball_ego(robot_type: int, foot: str, motion: KickMotion) -> tuple[float, float]:
+    """Where the kick wants the ball's centre relative to the torso when the robot stands in
+    ``stand`` (ego frame: x forward, y left; m).
+
+    Why the stand pose rather than this cycle's joint angles: while the robot steps the feet
+    swing by centimetres, and the kick starts from the stand anyway."""
+    return _expected_ball_ego(robot_type, foot, motion.ball_gap_m, motion.ball_side_m)
+
+
+@cache
+def _expected_ball_ego(robot_type: int, foot: str, gap: float, side: float) -> tuple[float, float]:
+    spec = robot_spec(robot_type)
     name = "lfoot" if foot == "left" else "rfoot"
-    foot_pose = world.body_transforms[name]
-    size = world.robot.spec.body(name).size
+    foot_pose = body_transforms(spec, get_pose("stand").joints)[name]
     forward_native = foot_pose[:3, 1]  # the foot's own y axis points forward
     outwards_native = foot_pose[:3, 0] * (-1.0 if foot == "left" else 1.0)  # its x: right
-    reach = size[1] / 2 + BALL_RADIUS + motion.ball_gap_m
-    point = foot_pose[:3, 3] + forward_native * reach + outwards_native * motion.ball_side_m
-    return world.to_ego(point)[:2]
+    reach = spec.body(name).size[1] / 2 + BALL_RADIUS + gap
+    point = foot_pose[:3, 3] + forward_native * reach + outwards_native * side
+    return (float(point[1]), float(-point[0]))  # native (x right, y forward) -> ego
 
 
 def kick_spot(
@@ -132,8 +138,8 @@ class BasicKickSkill(Skill):
     def reset(self) -> None:
         self.phase = "approach"
         self.foot: str | None = None
-        self._rounds = 0
         self._strength = 1.0
+        self._settled = 0
 
     def validate(self, target_x: float, target_y: float, distance: float | str = LONG) -> None:
         if not (math.isfinite(target_x) and math.isfinite(target_y)):
@@ -156,13 +162,16 @@ class BasicKickSkill(Skill):
             self._look_down(context)
             return False
         motion = kick_motion(world.robot.robot_type)
-        if self.foot is None:
-            self.foot = self._choose_foot(context)
+        if self.foot is None or (
+            self.phase == "approach"
+            and world.distance_to(world.ball.position) > CHOOSE_FOOT_DISTANCE_M
+        ):
+            self.foot = self._choose_foot(context, motion, (target_x, target_y))
         alignment = self._alignment(context, motion, (target_x, target_y))
-        if self.phase == "approach":
-            self._approach(context, motion, (target_x, target_y), alignment)
+        if self.phase in ("approach", "back_off"):
+            self._approach(context, motion, (target_x, target_y))
         else:
-            self._align(context, alignment, motion, distance)
+            self._settle(context, alignment, motion, distance)
         self._look_down(context)
         return False
 
@@ -172,7 +181,6 @@ class BasicKickSkill(Skill):
         context: SkillContext,
         motion: KickMotion,
         target: tuple[float, float],
-        alignment: Alignment,
     ) -> None:
         assert self.foot is not None
         world = context.world
@@ -180,49 +188,55 @@ class BasicKickSkill(Skill):
         assert ball is not None
         offset = self._stand_offset(context, motion)
         x, y, heading = kick_spot(ball, target, offset)
-        if context.manager.execute_sub_behavior("walk", x, y, heading) or (
-            alignment.aligned and self._rounds == 0
-        ):
-            self.phase = "align"
-            self._rounds = 0
+        aim = math.radians(heading)
+        beyond = -BACK_OFF_M if self.phase == "back_off" else WALK_OVERSHOOT_M
+        x += beyond * math.cos(aim)
+        y += beyond * math.sin(aim)
+        if context.manager.execute_sub_behavior("walk", x, y, heading):
+            self.phase = "approach" if self.phase == "back_off" else "settle"
 
-    def _align(
+    def _settle(
         self,
         context: SkillContext,
         alignment: Alignment,
         motion: KickMotion,
         distance: float | str,
     ) -> None:
-        assert self.foot is not None
-        if alignment.lost:
-            self.phase = "approach"
-            context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0)
+        """Stand still, take the stand pose, then kick if the ball lies where the kick wants it,
+        else walk again."""
+        stopping = self._settled == 0
+        if stopping and not context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0):
             return
-        if alignment.aligned or self._rounds >= MAX_ALIGN_ROUNDS:
-            stopped = context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0)
-            if stopped:
-                if alignment.aligned or self._rounds >= MAX_ALIGN_ROUNDS:
-                    self.phase = "kick"
-                    self._strength = strength_for(motion, distance)
-                self._rounds += 1
+        if self._settled < SETTLE_CYCLES:
+            self._settled += 1
+            context.manager.execute_sub_behavior("pose", "stand")
             return
-        vx = _clip(ALIGN_GAIN * alignment.along_m, ALIGN_MAX_SPEED)
-        vy = _clip(ALIGN_GAIN * alignment.across_m, ALIGN_MAX_SPEED)
-        vturn = _clip(ALIGN_TURN_GAIN * alignment.heading_deg, ALIGN_MAX_TURN_DEG)
-        context.manager.execute_sub_behavior("walk_velocity", vx, vy, vturn)
+        self._settled = 0
+        if alignment.ready:
+            self.phase = "kick"
+            self._strength = strength_for(motion, distance)
+        else:
+            self.phase = "back_off"
 
     # ------------------------------------------------------------------ measurements
-    def _choose_foot(self, context: SkillContext) -> str:
-        """The foot on the side the ball lies (ego y > 0: left)."""
-        ball = context.world.ball_relative_ego
-        return FEET[0] if ball is None or ball[1] >= 0 else FEET[1]
+    def _choose_foot(
+        self, context: SkillContext, motion: KickMotion, target: tuple[float, float]
+    ) -> str:
+        """The foot whose kicking spot lies nearer the robot (less walking)."""
+        world = context.world
+        ball = world.ball.position
+        assert ball is not None
+        spots = {
+            foot: kick_spot(ball, target, expected_ball_ego(world.robot.robot_type, foot, motion))
+            for foot in FEET
+        }
+        return min(FEET, key=lambda foot: world.distance_to(spots[foot][:2]))
 
     def _stand_offset(self, context: SkillContext, motion: KickMotion) -> tuple[float, float]:
         """Where the ball should lie relative to the torso (ego x, y) when the robot stands
         ready to kick."""
         assert self.foot is not None
-        x, y = expected_ball_ego(context, self.foot, motion)
-        return float(x), float(y)
+        return expected_ball_ego(context.world.robot.robot_type, self.foot, motion)
 
     def _alignment(
         self, context: SkillContext, motion: KickMotion, target: tuple[float, float]
@@ -233,7 +247,8 @@ class BasicKickSkill(Skill):
         ball = world.ball.position
         pose = world.pose
         assert ball_ego is not None and ball is not None and pose is not None
-        error = ball_ego[:2] - expected_ball_ego(context, self.foot, motion)
+        expected = expected_ball_ego(world.robot.robot_type, self.foot, motion)
+        error = ball_ego[:2] - np.asarray(expected)
         wanted = math.degrees(math.atan2(target[1] - ball[1], target[0] - ball[0]))
         heading = (wanted - pose.heading_deg + 180.0) % 360.0 - 180.0
         return Alignment(float(error[0]), float(error[1]), heading)
@@ -243,5 +258,9 @@ class BasicKickSkill(Skill):
         context.commands.set_targets({"hj1": 0.0, "hj2": HEAD_PITCH_DEG})
 
 
-def _clip(value: float, limit: float) -> float:
-    return max(-limit, min(limit, value))
+def _speed(error: float, deadband: float, gain: float, low: float, high: float) -> float:
+    """Walk speed that takes ``error`` off: 0 within ``deadband``, else ``gain * error`` with
+    its size kept in [low, high]."""
+    if abs(error) < deadband:
+        return 0.0
+    return math.copysign(min(max(abs(gain * error), low), high), error)
