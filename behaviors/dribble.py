@@ -106,6 +106,13 @@ class DribbleGait:
     #: deg/s of turn per degree of heading error, and the largest turn rate
     turn_gain: float = 2.0
     max_turn_deg: float = 60.0
+    #: the ball's place turns with the direction to dribble once the heading error exceeds
+    #: the dead band (small heading wobbles would rock the robot sideways), by the excess, up
+    #: to max_placement_deg
+    placement_deadband_deg: float = 20.0
+    max_placement_deg: float = 75.0
+    #: share of the catch-up speed kept while turning hard
+    turning_catch_up_share: float = 0.3
     #: the forward speed shrinks to nothing as the ball lies this far off the line ...
     side_slowdown: float = 0.1
     #: ... or as the heading error reaches this many degrees
@@ -144,28 +151,35 @@ def ball_within_reach(inputs: DribbleInputs, gait: DribbleGait) -> bool:
 def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, float, float]:
     """The walk command (vx m/s, vy m/s, vturn deg/s) that keeps the ball on the gait's line.
 
-    Turn: proportional to the heading error. Sideways: proportional to the ball's offset from
-    the line, plus the orbit term ``-turn * ball_x`` (turning left swings a ball ahead to the
-    right; stepping right by as much keeps it in front). Forward: the gait's speed plus a
-    catch-up term (a share of how far the ball rolled beyond ``ball_ahead`` and of its own
-    forward speed); the gait's speed shrinks as the ball drifts off the line, both shrink as
-    the heading is wrong; once out of reach only the catch-up term remains.
+    Turn: proportional to the heading error. Where the ball should lie: ``ball_ahead`` along
+    the direction to dribble and ``ball_side`` to its left; the direction's angle counts only
+    beyond a dead band and up to ``max_placement_deg``, so that for a sharp turn the robot
+    circles the ball instead of walking through it. Sideways: proportional to the ball's side
+    error, plus the orbit term ``-turn * ball_x`` (turning left swings a ball ahead to the
+    right; stepping right by as much keeps it in front). Forward: the gait's speed while the
+    ball is within reach, shrunk as the ball lies off the line (a toe would hit it on its side)
+    or the heading is wrong, plus a catch-up term (a share of the ball's forward error and,
+    once it lies beyond ``ball_ahead``, of its own forward speed).
     """
-    turn_deg = _clip(gait.turn_gain * inputs.heading_error_deg, gait.max_turn_deg)
-    side_error = inputs.ball_y - gait.ball_side
+    error = inputs.heading_error_deg
+    turn_deg = _clip(gait.turn_gain * error, gait.max_turn_deg)
+    beyond = max(0.0, abs(error) - gait.placement_deadband_deg)
+    angle = math.radians(math.copysign(min(beyond, gait.max_placement_deg), error))
+    ux, uy = math.cos(angle), math.sin(angle)
+    ahead_error = inputs.ball_x - (gait.ball_ahead * ux - gait.ball_side * uy)
+    side_error = inputs.ball_y - (gait.ball_ahead * uy + gait.ball_side * ux)
     orbit = -math.radians(turn_deg) * max(inputs.ball_x, 0.0)
     vy = _clip(gait.side_gain * side_error + orbit, gait.max_side_speed)
     aligned = max(0.0, 1.0 - abs(side_error) / gait.side_slowdown)
-    facing = max(0.0, 1.0 - abs(inputs.heading_error_deg) / gait.heading_slowdown_deg)
-    base = gait.speed if ball_within_reach(inputs, gait) else 0.0
-    catch_up = gait.ahead_gain * (inputs.ball_x - gait.ball_ahead)
-    catch_up += gait.follow_gain * max(inputs.ball_vx, 0.0)
+    facing = max(0.0, 1.0 - abs(error) / gait.heading_slowdown_deg)
+    base = gait.speed * aligned * facing if ball_within_reach(inputs, gait) else 0.0
+    catch_up = gait.ahead_gain * ahead_error
+    if ahead_error > 0.0:  # following a ball that is nearer than wanted would tread on it
+        catch_up += gait.follow_gain * max(inputs.ball_vx, 0.0)
+    catch_up *= max(facing, gait.turning_catch_up_share)
     if inputs.ball_x < 0.0:  # the ball is behind: never walk on over it
         catch_up = gait.min_speed
-    # an off-line ball near the feet would be hit on its side: slow down while stepping
-    # across; a ball far ahead is caught up with whatever its side
-    vx = (base * aligned + catch_up) * facing
-    vx = min(max(vx, gait.min_speed), gait.max_speed)
+    vx = min(max(base + catch_up, gait.min_speed), gait.max_speed)
     return vx, vy, turn_deg
 
 

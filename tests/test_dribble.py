@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pytest
@@ -67,6 +67,25 @@ def test_turning_left_steps_right_to_orbit_the_ball():
     assert turn > 0.0
     assert vy < 0.0
     assert vx < GAIT.speed
+
+
+def test_a_sharp_turn_circles_the_ball_instead_of_walking_through_it():
+    """Dribbling on at 90 degrees to the left of the heading: the ball belongs ahead-left, so
+    the robot turns left and steps right around the ball; it never heads straight at it."""
+    vx, vy, turn = dribble_velocity(_inputs(GAIT.ball_ahead, 0.0, 90.0), GAIT)
+    assert turn > 0.0
+    assert vy < 0.0
+    assert abs(vy) > 0.5 * abs(vx)
+
+
+def test_a_near_rolling_ball_is_not_chased():
+    """A ball nearer than ball_ahead is not followed at its speed: the robot would tread on it."""
+    gait = replace(GAIT, follow_gain=1.0)
+    still = dribble_velocity(_inputs(0.15), gait)[0]
+    rolling = dribble_velocity(DribbleInputs(0.15, 0.0, 0.8, 0.0, 0.0), gait)[0]
+    ahead_rolling = dribble_velocity(DribbleInputs(0.22, 0.0, 0.1, 0.0, 0.0), gait)[0]
+    assert rolling == pytest.approx(still)
+    assert ahead_rolling > dribble_velocity(_inputs(0.22), gait)[0]
 
 
 def test_within_reach_window():
@@ -245,6 +264,27 @@ def _assert_phase_sequence(phases: list[tuple[int, bool]]) -> None:
 def test_walk_phase_sequence():
     run = _short_run("", "left", skill_name="walk_velocity")
     _assert_phase_sequence(run.phases)
+
+
+def test_dribble_turns_with_the_ball_to_a_new_direction():
+    """One second straight on, then the direction turns 90 degrees to the left: the robot
+    walks around the ball and takes it along the new direction, without falling."""
+    session, agent = start_dribble_episode(0, 0.0, seed=0)
+    try:
+        for _ in range(50):
+            agent.run("dribble", "dfdl", 0.0, "left")
+        turned_from = np.array(session.ball.position())
+        for _ in range(300):
+            agent.run("dribble", "dfdl", 90.0, "left")
+            assert not agent.robot.has_fallen()
+        moved = np.array(session.ball.position()) - turned_from
+        assert moved[1] > 0.3
+        assert agent.robot.torso_yaw_deg() == pytest.approx(90.0, abs=30.0)
+        tx, ty, _ = agent.robot.torso_position()
+        bx, by, _ = session.ball.position()
+        assert math.hypot(bx - tx, by - ty) < 1.0  # still within the dribble's reach
+    finally:
+        session.close()
 
 
 @pytest.mark.parametrize(("kind", "foot"), [("dfdl", "left"), ("lfdl", "left"), ("lfdl", "right")])
