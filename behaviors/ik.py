@@ -132,10 +132,13 @@ class _AxisTurn:
     def rotation(self, angle: float) -> Rot:
         """I + sin(a) K + (1 - cos(a)) K^2."""
         s, t = math.sin(angle), 1.0 - math.cos(angle)
-        k, k2 = self.k, self.k2
-        return tuple(  # type: ignore[return-value]
-            (1.0 if i % 4 == 0 else 0.0) + s * k[i] + t * k2[i] for i in range(9)
-        )
+        k0, k1, k2, k3, k4, k5, k6, k7, k8 = self.k
+        m0, m1, m2, m3, m4, m5, m6, m7, m8 = self.k2
+        return (
+            1.0 + s * k0 + t * m0, s * k1 + t * m1, s * k2 + t * m2,
+            s * k3 + t * m3, 1.0 + s * k4 + t * m4, s * k5 + t * m5,
+            s * k6 + t * m6, s * k7 + t * m7, 1.0 + s * k8 + t * m8,
+        )  # fmt: skip
 
 
 def _rpy(roll: float, pitch: float, yaw: float) -> Rot:
@@ -448,12 +451,15 @@ def _refine(
         ]
         if max(abs(e) for e in error) < REFINE_TOLERANCE:
             break
+        # column i: the axis crossed with the lever from joint i to the end, then the axis
+        ex, ey, ez = end
         columns = []
-        for (ax, ay, az), anchor in zip(axes, anchors, strict=True):
-            lx, ly, lz = end[0] - anchor[0], end[1] - anchor[1], end[2] - anchor[2]
+        for (ax, ay, az), (px, py, pz) in zip(axes, anchors, strict=True):
+            lx, ly, lz = ex - px, ey - py, ez - pz
             columns.append((ay * lz - az * ly, az * lx - ax * lz, ax * ly - ay * lx, ax, ay, az))
-        step = _solve_linear([list(row) for row in zip(*columns, strict=True)], error)
-        if step is None:  # a stretched or folded leg: keep the closest so far
+        try:  # LAPACK on a 6x6 costs less than elimination written in Python
+            step = np.linalg.solve(np.array(columns).T, error).tolist()
+        except np.linalg.LinAlgError:  # a stretched or folded leg: keep the closest so far
             break
         q = [a + d for a, d in zip(q, step, strict=True)]
     return q
@@ -468,34 +474,6 @@ def _mul_t(a: Rot, b: Rot) -> Rot:
         a3 * b0 + a4 * b1 + a5 * b2, a3 * b3 + a4 * b4 + a5 * b5, a3 * b6 + a4 * b7 + a5 * b8,
         a6 * b0 + a7 * b1 + a8 * b2, a6 * b3 + a7 * b4 + a8 * b5, a6 * b6 + a7 * b7 + a8 * b8,
     )  # fmt: skip
-
-
-def _solve_linear(matrix: list[list[float]], rhs: list[float]) -> list[float] | None:
-    """x with matrix @ x = rhs (Gaussian elimination with partial pivoting, as LAPACK's
-    ``gesv``); None when the matrix is singular."""
-    n = len(rhs)
-    rows = [[*row, value] for row, value in zip(matrix, rhs, strict=True)]
-    for col in range(n):
-        pivot = max(range(col, n), key=lambda r: abs(rows[r][col]))
-        if rows[pivot][col] == 0.0:
-            return None
-        rows[col], rows[pivot] = rows[pivot], rows[col]
-        head = rows[col]
-        inverse = 1.0 / head[col]
-        for r in range(col + 1, n):
-            row = rows[r]
-            factor = row[col] * inverse
-            if factor != 0.0:
-                for c in range(col + 1, n + 1):
-                    row[c] -= factor * head[c]
-    x = [0.0] * n
-    for r in range(n - 1, -1, -1):
-        row = rows[r]
-        total = row[n]
-        for c in range(r + 1, n):
-            total -= row[c] * x[c]
-        x[r] = total / row[r]
-    return x
 
 
 #: (ankle roll flipped by half a turn, knee bent the other way), the usual branch first

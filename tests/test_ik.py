@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from behaviors.ik import _solve_linear, leg_ik, leg_ik_for, rotation_rpy
+from behaviors.ik import leg_ik, leg_ik_for, rotation_rpy
 from world.kinematics import body_transforms
 from world.nao_model import ROBOT_TYPES, robot_spec
 
@@ -172,18 +172,6 @@ def test_closed_form_is_exact_to_a_nanometre(robot_type):
             reached = body_transforms(spec, solution.angles_deg)[foot]
             assert np.abs(reached[:3, 3] - target[:3, 3]).max() < 1e-9
             assert np.abs(reached[:3, :3] - target[:3, :3]).max() < 1e-9
-
-
-def test_linear_solver_matches_numpy_and_reports_singular_matrices():
-    rng = np.random.default_rng(3)
-    for _ in range(20):
-        matrix = rng.normal(size=(6, 6))
-        rhs = rng.normal(size=6)
-        got = _solve_linear(matrix.tolist(), rhs.tolist())
-        assert got == pytest.approx(np.linalg.solve(matrix, rhs).tolist(), abs=1e-9)
-    singular = rng.normal(size=(6, 6))
-    singular[:, 2] = 0.0
-    assert _solve_linear(singular.tolist(), [1.0] * 6) is None
 
 
 def test_rotation_rpy_is_the_product_of_elementary_rotations():
