@@ -8,10 +8,14 @@ Figures:
   the perception message written every cycle (what training pays);
 - ``inprocess_cycles_per_s_no_perception``: the same without writing perceptions (physics,
   sensors and referee only);
+- ``inprocess_cpu_cycles_per_s`` (and ``..._no_perception``): the same runs measured in this
+  process's CPU time instead of wall time: steadier where other programs share the cores;
 - ``networked22_cycles_per_s`` and ``networked22_realtime_factor``: 22 agents (11 a side, robot
   types mixed as the rules allow) in sync mode over TCP, each parsing its perception and answering
   with new joint speeds every cycle; the server runs as its own process (``naosoccer server
   --sync``), all 22 clients in this one, so on a 2-core machine each side has about one core;
+- ``networked22_server_cpu_ms_per_cycle``: CPU time the server process spent per cycle in that
+  run (Linux only: read from /proc);
 - ``parse_us`` / ``write_us``: one full perception message (with a ``See``) parsed / written.
 """
 
@@ -48,18 +52,32 @@ def _joint_command(cycle: int, offset: float) -> bytes:
 
 
 def inprocess_cycles_per_s(cycles: int, with_perception: bool) -> float:
+    return inprocess_rates(cycles, with_perception)[0]
+
+
+def inprocess_rates(cycles: int, with_perception: bool) -> tuple[float, float]:
+    """Cycles per second of wall time and of this process's CPU time."""
     from sim.session import Session, SessionConfig
 
     session = Session(SessionConfig(seed=0))
     agent = session.join("Bench", 1, beam=(-2.0, 0.0, 0.0), settle_cycles=20)
-    start = time.perf_counter()
+    start, start_cpu = time.perf_counter(), time.process_time()
     for i in range(cycles):
         session.handle_message(agent, _joint_command(i, 0.0))
         session.step(perceive=with_perception)
         session.perception(agent)
-    elapsed = time.perf_counter() - start
+    elapsed, elapsed_cpu = time.perf_counter() - start, time.process_time() - start_cpu
     session.close()
-    return cycles / elapsed
+    return cycles / elapsed, cycles / elapsed_cpu
+
+
+def _cpu_seconds(pid: int) -> float:
+    """User + system CPU seconds of process ``pid`` (Linux /proc; NaN elsewhere)."""
+    try:
+        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except OSError:
+        return math.nan
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def _free_port() -> int:
@@ -125,13 +143,18 @@ class _Agent:
 
 def networked22(cycles: int) -> float:
     """Cycles per second with 22 agents joining one at a time, then all moving their joints."""
+    return networked22_figures(cycles)[0]
+
+
+def networked22_figures(cycles: int) -> tuple[float, float]:
+    """(cycles per second, server CPU milliseconds per cycle) of :func:`networked22`'s run."""
     port, monitor_port = _free_port(), _free_port()
     server = _start_server(port, monitor_port)
     selector = selectors.DefaultSelector()
     roster = [(team, unum, t) for team in ("Left", "Right") for unum, t in enumerate(TEAM_TYPES, 1)]
     agents: list[_Agent] = []
     start_at = end_at = None
-    start = 0.0
+    start = start_cpu = 0.0
     try:
         while end_at is None or agents[0].perceptions < end_at:
             if len(agents) < len(roster) and (not agents or agents[-1].ready):
@@ -144,7 +167,7 @@ def networked22(cycles: int) -> float:
                 end_at = start_at + cycles
             moving = start_at is not None and agents[0].perceptions >= start_at
             if moving and not start:
-                start = time.perf_counter()
+                start, start_cpu = time.perf_counter(), _cpu_seconds(server.pid)
             for key, _ in selector.select(timeout=10):
                 agent = key.data
                 data = agent.sock.recv(1 << 20)
@@ -152,7 +175,8 @@ def networked22(cycles: int) -> float:
                     raise RuntimeError("the server closed a connection")
                 for message in agent.decoder.feed(data):
                     agent.answer(message, moving)
-        return cycles / (time.perf_counter() - start)
+        rate = cycles / (time.perf_counter() - start)
+        return rate, 1000.0 * (_cpu_seconds(server.pid) - start_cpu) / cycles
     finally:
         for agent in agents:
             agent.sock.close()
@@ -165,13 +189,16 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="fewer cycles (noisier)")
     args = parser.parse_args()
     n = 300 if args.quick else 2000
-    print(f"inprocess_cycles_per_s: {inprocess_cycles_per_s(n, True):.0f}", flush=True)
-    print(
-        f"inprocess_cycles_per_s_no_perception: {inprocess_cycles_per_s(n, False):.0f}", flush=True
-    )
-    rate = networked22(100 if args.quick else 500)
+    wall, cpu = inprocess_rates(n, True)
+    print(f"inprocess_cycles_per_s: {wall:.0f}", flush=True)
+    wall_np, cpu_np = inprocess_rates(n, False)
+    print(f"inprocess_cycles_per_s_no_perception: {wall_np:.0f}")
+    print(f"inprocess_cpu_cycles_per_s: {cpu:.0f}")
+    print(f"inprocess_cpu_cycles_per_s_no_perception: {cpu_np:.0f}", flush=True)
+    rate, server_ms = networked22_figures(100 if args.quick else 500)
     print(f"networked22_cycles_per_s: {rate:.1f}")
     print(f"networked22_realtime_factor: {rate * 0.02:.2f}")
+    print(f"networked22_server_cpu_ms_per_cycle: {server_ms:.1f}")
     print(f"parse_us: {measure_parse_us():.1f}")
     print(f"write_us: {measure_write_us():.1f}")
     print(f"cpu_count: {os.cpu_count()}")
