@@ -103,6 +103,33 @@ def start_dribble_episode(
     return session, agent
 
 
+def dribble_to_phase(
+    agent: LocalAgent,
+    kind: str,
+    direction_deg: float,
+    seconds: float,
+    phase: tuple[int, bool],
+    foot: str = "left",
+) -> int:
+    """Dribble for ``seconds``, then on until the dribble is at ``phase`` (t, left_active of
+    the real robot): the hand-over point of the kick-in-motion episodes, any of the 16 phases.
+    Returns the cycles run; stops early (returning them too) if the robot falls."""
+    t, left_active = phase
+    if not 0 <= t <= 7:
+        raise ValueError(f"phase t must be 0..7, got {t}")
+    skill = agent.behavior.skill("dribble")
+    cycles = 0
+    for _ in range(round(seconds / CYCLE)):
+        agent.run("dribble", kind, direction_deg, foot)
+        cycles += 1
+        if agent.robot.has_fallen():
+            return cycles
+    while skill.phase != (t, left_active) and not agent.robot.has_fallen():
+        agent.run("dribble", kind, direction_deg, foot)
+        cycles += 1
+    return cycles
+
+
 class _Holding:
     """The holding rule's clock for one player (ground truth)."""
 

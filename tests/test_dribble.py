@@ -203,7 +203,7 @@ def test_mirrored_robot_state_is_an_involution():
 # ------------------------------------------------------------------ in the simulator
 pybullet = pytest.importorskip("pybullet")
 
-from benchmarks.dribble import start_dribble_episode  # noqa: E402
+from benchmarks.dribble import dribble_to_phase, start_dribble_episode  # noqa: E402
 
 #: One second and a half: the robot reaches the ball (0.3 m) and touches it a few times.
 SHORT_RUN_CYCLES = 90
@@ -302,3 +302,22 @@ def test_short_dribble_moves_the_ball_forward_by_contact_only(kind, foot):
         assert feet == {"lfoot" if foot == "left" else "rfoot"}, feet
     else:  # both feet take turns
         assert {"lfoot", "rfoot"} <= feet, feet
+
+
+def _episode_end(seed: int, phase: tuple[int, bool]) -> tuple[int, tuple, tuple]:
+    session, agent = start_dribble_episode(0, 30.0, seed=seed)
+    try:
+        cycles = dribble_to_phase(agent, "lfdl", 30.0, 0.5, phase)
+        assert agent.behavior.skill("dribble").phase == phase
+        return cycles, session.ball.position(), agent.robot.torso_position()
+    finally:
+        session.close()
+
+
+def test_episode_start_is_reproducible_and_stops_at_the_chosen_phase():
+    """The next issue's episodes: the same seed gives the same dribble to the last bit, and a
+    caller can hand over at a chosen phase of either leg."""
+    first = _episode_end(4, (6, True))
+    assert _episode_end(4, (6, True)) == first
+    cycles, _, _ = _episode_end(4, (2, False))
+    assert 25 <= cycles < 25 + 16
