@@ -288,43 +288,43 @@ def clip_segments(
     visible = _visible_points(np.stack([begin, end], axis=1), half_h_deg, half_v_deg)
     keep = visible[:, 0] & visible[:, 1]
     new_begin, new_end = begin.copy(), end.copy()
-    rows = np.flatnonzero(~keep)
-    if rows.size == 0:
+    rows = np.flatnonzero(~keep).tolist()
+    if not rows:
         return new_begin, new_end, keep
-    vis_b, vis_e = visible[rows, 0], visible[rows, 1]
-    near_b, near_e = _cut_at_near_plane(begin[rows], end[rows])
-    front = (near_b[:, 1] > 0.0) & (near_e[:, 1] > 0.0)
     if edges is None:
         edges = view_edges(half_h_deg, half_v_deg)
-    crossings, hit = _edge_crossings(near_b, near_e, front, edges)
-
-    # first and second crossing in edge order (a stable sort puts hits first, in edge order)
-    order = np.argsort(~hit, axis=1, kind="stable")
-    sub = np.arange(rows.size)
-    first = crossings[sub, order[:, 0]]
-    second = crossings[sub, order[:, 1]]
-    count = hit.sum(axis=1)
-    two = count >= 2
-    one_begin = (count == 1) & ~vis_b
-    one_end = (count == 1) & vis_b
-    new_begin[rows] = np.where((two | one_begin)[:, None], first, begin[rows])
-    new_end[rows] = np.where(two[:, None], second, np.where(one_end[:, None], first, end[rows]))
-    keep[rows] = two | (one_begin & vis_e) | one_end
+    # Plain floats per clipped segment (a handful per image): the same IEEE operations as the
+    # array formulas, without numpy's per-call cost on tiny arrays. The dot products with the
+    # edge planes stay one matrix product, as Bullet-free numpy computes them.
+    cut = [_cut_at_near_plane(begin[r].tolist(), end[r].tolist()) for r in rows]
+    front = [k for k, (b, e) in enumerate(cut) if b[1] > 0.0 and e[1] > 0.0]
+    hits: list[list[list[float]]] = [[] for _ in rows]
+    if front:
+        near_b = np.array([cut[k][0] for k in front])
+        near_e = np.array([cut[k][1] for k in front])
+        val_b, val_e = (near_b @ edges[2].T).tolist(), (near_e @ edges[2].T).tolist()
+        for k, vb, ve in zip(front, val_b, val_e, strict=True):
+            hits[k] = _edge_crossings(*cut[k], vb, ve, edges)
+    vis = visible[rows].tolist()
+    for r, (vis_b, vis_e), crossings in zip(rows, vis, hits, strict=True):
+        if len(crossings) >= 2:
+            new_begin[r], new_end[r] = crossings[0], crossings[1]
+        elif len(crossings) == 1 and not vis_b:
+            new_begin[r] = crossings[0]
+        elif len(crossings) == 1:
+            new_end[r] = crossings[0]
+        keep[r] = len(crossings) >= 2 or (len(crossings) == 1 and (vis_e or vis_b))
     return new_begin, new_end, keep
 
 
-def _cut_at_near_plane(
-    begin: NDArray[np.float64], end: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _cut_at_near_plane(begin: list[float], end: list[float]) -> tuple[list[float], list[float]]:
     """Move the end behind y = FOCAL_LENGTH onto that plane, where exactly one end is behind."""
-    b_y, e_y = begin[:, 1], end[:, 1]
-    cut_b = (b_y < FOCAL_LENGTH) & (e_y >= FOCAL_LENGTH)
-    cut_e = (e_y < FOCAL_LENGTH) & (b_y >= FOCAL_LENGTH)
-    span = np.where(b_y != e_y, b_y - e_y, 1.0)
-    on_plane = end + (begin - end) * ((FOCAL_LENGTH - e_y) / span)[:, None]
-    near_b = np.where(cut_b[:, None], on_plane, begin)
-    near_e = np.where(cut_e[:, None], on_plane, end)
-    return near_b, near_e
+    b_y, e_y = begin[1], end[1]
+    if (b_y < FOCAL_LENGTH) == (e_y < FOCAL_LENGTH):
+        return begin, end
+    factor = (FOCAL_LENGTH - e_y) / (b_y - e_y)
+    on_plane = [e + (b - e) * factor for b, e in zip(begin, end, strict=True)]
+    return (on_plane, end) if b_y < FOCAL_LENGTH else (begin, on_plane)
 
 
 ViewEdges = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
@@ -344,36 +344,31 @@ def view_edges(half_h_deg: float, half_v_deg: float) -> ViewEdges:
 
 
 def _edge_crossings(
-    begin: NDArray[np.float64],
-    end: NDArray[np.float64],
-    mask: NDArray[np.bool_],
+    begin: list[float],
+    end: list[float],
+    val_b: list[float],
+    val_e: list[float],
     edges: ViewEdges,
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """Where each projected segment crosses each edge of the view rectangle on the image plane
-    (edges in the server's order top, bottom, left, right): the 3D crossing points (n, 4, 3)
-    and whether each crossing exists (n, 4). Rows outside ``mask`` never cross."""
+) -> list[list[float]]:
+    """The 3D points where a segment in front of the camera, projected onto the image plane,
+    crosses the edges of the view rectangle, in the server's edge order (top, bottom, left,
+    right). ``val_b``/``val_e``: the ends' dot products with each edge plane's normal."""
     f = FOCAL_LENGTH
-    starts, directions, normals = edges
-    n = begin.shape[0]
-    crossings = np.zeros((n, 4, 3))
-    hit = np.zeros((n, 4), dtype=bool)
-    rows = np.flatnonzero(mask)
-    if rows.size == 0:
-        return crossings, hit
-    b, e = begin[rows], end[rows]
-    bp = b[:, [0, 2]] * (f / b[:, 1])[:, None]
-    d = (e[:, [0, 2]] * (f / e[:, 1])[:, None] - bp)[:, None, :]  # (m, 1, 2)
-    w = starts[None] - bp[:, None, :]  # (m, 4, 2)
-    g = directions[None]
-    denom = d[..., 0] * g[..., 1] - d[..., 1] * g[..., 0]
-    safe = np.where(denom != 0.0, denom, 1.0)
-    s = (w[..., 0] * g[..., 1] - w[..., 1] * g[..., 0]) / safe  # along the segment
-    u = (w[..., 0] * d[..., 1] - w[..., 1] * d[..., 0]) / safe  # along the edge
-    ok = (denom != 0.0) & (s >= 0.0) & (s <= 1.0) & (u >= 0.0) & (u <= 1.0)
-    val_b = b @ normals.T  # (m, 4)
-    val_e = e @ normals.T
-    gap = np.where(val_b != val_e, val_b - val_e, 1.0)
-    t = (val_b / gap)[..., None]
-    crossings[rows] = b[:, None, :] + (e - b)[:, None, :] * t
-    hit[rows] = ok & (val_b != val_e)
-    return crossings, hit
+    starts, directions, _ = edges
+    scale_b, scale_e = f / begin[1], f / end[1]
+    bp0, bp1 = begin[0] * scale_b, begin[2] * scale_b
+    d0, d1 = end[0] * scale_e - bp0, end[2] * scale_e - bp1
+    crossings = []
+    for (s0, s1), (g0, g1), vb, ve in zip(
+        starts.tolist(), directions.tolist(), val_b, val_e, strict=True
+    ):
+        denom = d0 * g1 - d1 * g0
+        if denom == 0.0 or vb == ve:
+            continue
+        w0, w1 = s0 - bp0, s1 - bp1
+        along = (w0 * g1 - w1 * g0) / denom  # along the segment
+        across = (w0 * d1 - w1 * d0) / denom  # along the edge
+        if 0.0 <= along <= 1.0 and 0.0 <= across <= 1.0:
+            t = vb / (vb - ve)
+            crossings.append([b + (e - b) * t for b, e in zip(begin, end, strict=True)])
+    return crossings
