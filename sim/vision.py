@@ -303,8 +303,9 @@ def clip_segments(
         near_b = np.array([cut[k][0] for k in front])
         near_e = np.array([cut[k][1] for k in front])
         val_b, val_e = (near_b @ edges[2].T).tolist(), (near_e @ edges[2].T).tolist()
+        lines = list(zip(edges[0].tolist(), edges[1].tolist(), strict=True))
         for k, vb, ve in zip(front, val_b, val_e, strict=True):
-            hits[k] = _edge_crossings(*cut[k], vb, ve, edges)
+            hits[k] = _edge_crossings(*cut[k], vb, ve, lines)
     vis = visible[rows].tolist()
     for r, (vis_b, vis_e), crossings in zip(rows, vis, hits, strict=True):
         if len(crossings) >= 2:
@@ -348,20 +349,18 @@ def _edge_crossings(
     end: list[float],
     val_b: list[float],
     val_e: list[float],
-    edges: ViewEdges,
+    edges: list[tuple[list[float], list[float]]],
 ) -> list[list[float]]:
     """The 3D points where a segment in front of the camera, projected onto the image plane,
     crosses the edges of the view rectangle, in the server's edge order (top, bottom, left,
-    right). ``val_b``/``val_e``: the ends' dot products with each edge plane's normal."""
+    right). ``val_b``/``val_e``: the ends' dot products with each edge plane's normal;
+    ``edges``: each edge's start and direction in image (x, z)."""
     f = FOCAL_LENGTH
-    starts, directions, _ = edges
     scale_b, scale_e = f / begin[1], f / end[1]
     bp0, bp1 = begin[0] * scale_b, begin[2] * scale_b
     d0, d1 = end[0] * scale_e - bp0, end[2] * scale_e - bp1
     crossings = []
-    for (s0, s1), (g0, g1), vb, ve in zip(
-        starts.tolist(), directions.tolist(), val_b, val_e, strict=True
-    ):
+    for ((s0, s1), (g0, g1)), vb, ve in zip(edges, val_b, val_e, strict=True):
         denom = d0 * g1 - d1 * g0
         if denom == 0.0 or vb == ve:
             continue
