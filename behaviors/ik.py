@@ -1,21 +1,28 @@
-"""Leg inverse kinematics of the simulated NAO, every robot type, closed form plus Newton steps.
+"""Leg inverse kinematics of the simulated NAO, every robot type, in closed form.
 
 Each leg is six hinges (``world.nao_model``): lj1 hip yaw-pitch about the 45-degree axis
-(-s, 0, +-s), lj2 hip roll (y), lj3 hip pitch (x), lj4 knee (x), lj5 ankle pitch (x), lj6
-ankle roll (y). The three hip axes meet in one point, the hip H. Below it the chain is offset
-vectors whose x (sideways) component is zero: thigh ``t`` (hip -> knee anchor, slightly
-forward), shank ``k`` (knee -> ankle pitch), and ``d`` (ankle pitch -> ankle roll, a few mm
-down, and backwards on type 4). Because lj3-lj5 all turn about x, those offsets stay in the
-leg's sagittal plane, which gives a closed form in four steps:
+``a = (-s, 0, +-s)``, lj2 hip roll (y), lj3 hip pitch (x), lj4 knee (x), lj5 ankle pitch (x),
+lj6 ankle roll (y). The hip yaw-pitch and roll axes meet in the hip H; the hip-pitch anchor is
+``p`` below it (zero on types 0, 2, 4; 18 mm on types 1 and 3). Below it the chain is offset
+vectors whose x (sideways) component is zero: thigh ``t`` (hip-pitch -> knee anchor), shank
+``k`` (knee -> ankle pitch), and ``d`` (ankle pitch -> ankle roll, a few mm down, and
+backwards on type 4). Because lj3-lj5 all turn about x, ``p``, ``t``, ``k`` and ``d`` stay in
+the leg's sagittal plane, which gives an exact closed form in five steps (R_foot = Ra(lj1)
+Ry(lj2) Rx(phi) Ry(lj6) with phi = lj3 + lj4 + lj5):
 
 1. the ankle-roll anchor follows from the foot pose; seen from the foot, the hip direction has
    no x component once lj6 is undone: ``lj6 = atan2(-w_x, w_z)``;
-2. the distance from the hip to the ankle-pitch anchor fixes the knee (law of cosines with the
-   tilted thigh and shank vectors), and the direction fixes lj5;
-3. the hip rotation R123 = R_foot Ry(-lj6) Rx(-(lj4 + lj5)) is split as Ra(lj1) Ry(lj2)
-   Rx(lj3): its x column turned back about the 45-degree axis must have no y component, which
-   is one ``a cos + b sin = 0`` equation for lj1; lj2 and lj3 then follow from the remaining
-   matrix.
+2. B = R_foot Ry(-lj6) = Ra(lj1) Ry(lj2) Rx(phi): its x column turned back about ``a`` must
+   have no y component, one ``a cos + b sin = 0`` equation for lj1 (of its two solutions the
+   one in range);
+3. lj2 and phi then follow from Ra(-lj1) B = Ry(lj2) Rx(phi);
+4. with phi known, the hip-pitch offset's part of the hip -> ankle vector is known too, and the
+   rest is a two-link planar chain: the law of cosines with ``t`` and ``k`` fixes the knee, the
+   direction fixes lj5;
+5. lj3 = phi - lj4 - lj5.
+
+The exact solution replaced Newton steps that types 1 and 3 took from an approximate start: the
+two agree to the steps' 1e-6 m tolerance, types 0, 2 and 4 are unchanged to 1e-11 degrees.
 
 Frames: the model's native frame (x = robot's right, y = forward, z = up, origin at the torso
 centre), as :mod:`world.kinematics`; angles in degrees by perceptor name at the interface. The
@@ -27,7 +34,7 @@ out-of-reach target changed anything.
 Speed: a walking agent solves both legs every cycle, so the arithmetic is plain floats on
 tuples (rotations as row-major 9-tuples), not numpy: on 3-vectors and 3x3 matrices numpy's
 per-call cost is several times the arithmetic. Products with the elementary rotations are
-written out (a turn about x only mixes two columns), and every constant of a leg is computed
+written out (a turn about y only mixes two columns), and every constant of a leg is computed
 once per robot type. ``numpy`` appears only at the public interface (4x4 transforms in,
 positions out).
 """
@@ -94,16 +101,6 @@ def _apply_t(r: Rot, v: Vec3) -> Vec3:
         r[1] * x + r[4] * y + r[7] * z,
         r[2] * x + r[5] * y + r[8] * z,
     )
-
-
-def _times_rx(r: Rot, angle: float) -> Rot:
-    """r @ Rx(angle): only the y and z columns change."""
-    c, s = math.cos(angle), math.sin(angle)
-    return (
-        r[0], r[1] * c + r[2] * s, r[2] * c - r[1] * s,
-        r[3], r[4] * c + r[5] * s, r[5] * c - r[4] * s,
-        r[6], r[7] * c + r[8] * s, r[8] * c - r[7] * s,
-    )  # fmt: skip
 
 
 def _times_ry(r: Rot, angle: float) -> Rot:
@@ -201,8 +198,9 @@ class _Leg:
     sole: Vec3  # ankle-roll anchor -> sole point (straight down to the sole)
     low_deg: tuple[float, ...]
     high_deg: tuple[float, ...]
-    # derived once: the sagittal-plane triangle of step 2 (y, z of the thigh incl. the hip-pitch
-    # offset, and of the shank), its side lengths and directions, lj1's range in radians
+    # derived once: y, z of the hip-pitch offset, the thigh and the shank (step 4), the last
+    # two's lengths and directions, lj1's range in radians
+    pitch_yz: tuple[float, float]
     thigh_yz: tuple[float, float]
     shank_yz: tuple[float, float]
     thigh_length: float
@@ -210,7 +208,6 @@ class _Leg:
     thigh_angle: float
     shank_angle: float
     yaw_pitch_range: tuple[float, float]
-    refine: bool  # whether the closed form is only a start (hip-pitch anchor offset)
 
 
 class LegIK:
@@ -242,7 +239,7 @@ class LegIK:
             raise ValueError("leg IK expects the leg's offsets in the y-z plane")
         roll_anchor = anchors[5]
         sole_z = foot.centre[2] - foot.size[2] / 2
-        thigh = (offsets[0] + offsets[1])[1:]
+        thigh = offsets[1][1:]
         shank = offsets[2][1:]
         axis = _vec(axes[0])
         return _Leg(
@@ -258,6 +255,7 @@ class LegIK:
             sole=(0.0, 0.0, float(sole_z - roll_anchor[2])),
             low_deg=tuple(float(j.min_deg) for j in joints),
             high_deg=tuple(float(j.max_deg) for j in joints),
+            pitch_yz=(float(offsets[0][1]), float(offsets[0][2])),
             thigh_yz=(float(thigh[0]), float(thigh[1])),
             shank_yz=(float(shank[0]), float(shank[1])),
             thigh_length=math.hypot(*thigh),
@@ -265,7 +263,6 @@ class LegIK:
             thigh_angle=math.atan2(thigh[1], thigh[0]),
             shank_angle=math.atan2(shank[1], shank[0]),
             yaw_pitch_range=(math.radians(joints[0].min_deg), math.radians(joints[0].max_deg)),
-            refine=bool(np.any(offsets[0])),
         )
 
     # ------------------------------------------------------------------ geometry helpers
@@ -329,8 +326,6 @@ def _solve(leg: _Leg, rotation: Rot, roll_anchor: Vec3) -> LegSolution:
     low, high = leg.low_deg, leg.high_deg
     for roll_flipped, knee_forward in _BRANCHES:
         q, reachable = _closed_form(leg, rotation, roll_anchor, roll_flipped, knee_forward)
-        if leg.refine:
-            q = _refine(leg, q, rotation, roll_anchor)
         degrees = [math.degrees(a) for a in q]
         excess = sum(max(lo - d, 0.0) for lo, d in zip(low, degrees, strict=True))
         excess += sum(max(d - hi, 0.0) for hi, d in zip(high, degrees, strict=True))
@@ -354,9 +349,8 @@ def _closed_form(
     roll_flipped: bool = False,
     knee_forward: bool = False,
 ) -> tuple[list[float], bool]:
-    """The exact solution when the hip pitch axis meets the other two (types 0, 2, 4); with
-    the hip-pitch anchor lower (types 1, 3) it treats that offset as part of the thigh, exact
-    for lj3 = 0 and a close start for :func:`_refine` otherwise."""
+    """The exact solution on one branch of the ankle roll and of the knee (see the module
+    docstring for the steps)."""
     # 1. ankle roll: undo it and the hip, seen from the foot, lies in the y-z plane
     hip = leg.hip
     wx, wy, wz = _apply_t(
@@ -365,8 +359,20 @@ def _closed_form(
     q6 = math.atan2(wx, -wz) if roll_flipped else math.atan2(-wx, wz)
     # u = Ry(q6) w; only its y and z are needed (u_y = w_y)
     uz = -math.sin(q6) * wx + math.cos(q6) * wz
-    # 2. knee and ankle pitch in the sagittal plane: v = Rx(-q5) (shank + Rx(-q4) thigh)
-    v0, v1 = -wy - leg.ankle[1], -uz - leg.ankle[2]
+    # 2. B = Ra(q1) Ry(q2) Rx(phi): q1 from B's x column
+    b = _times_ry(rotation, -q6)
+    q1 = _yaw_pitch(leg, (b[0], b[3], b[6]))
+    # 3. Ra(-q1) B = Ry(q2) Rx(phi); Ry(-q2)'s middle row is (0, 1, 0), its last (sin q2, 0,
+    # cos q2)
+    rest = _mul(leg.yaw_pitch.rotation(-q1), b)
+    q2 = math.atan2(-rest[6], rest[0])
+    c2, s2 = math.cos(-q2), math.sin(-q2)
+    phi = math.atan2(-s2 * rest[1] + c2 * rest[7], rest[4])
+    # 4. knee and ankle pitch in the sagittal plane: -u - d - Rx(-phi) p = Rx(-q5) (k + Rx(-q4) t)
+    cp, sp = math.cos(-phi), math.sin(-phi)
+    (p0, p1), (t0, t1), (s0, s1) = leg.pitch_yz, leg.thigh_yz, leg.shank_yz
+    v0 = -wy - leg.ankle[1] - (cp * p0 - sp * p1)
+    v1 = -uz - leg.ankle[2] - (sp * p0 + cp * p1)
     lt, ls, lv = leg.thigh_length, leg.shank_length, math.hypot(v0, v1)
     cos_gap = (lv * lv - lt * lt - ls * ls) / (2.0 * lt * ls)
     reachable = -1.0 <= cos_gap <= 1.0
@@ -374,17 +380,10 @@ def _closed_form(
     # the usual branch bends the knee backwards (lj4 <= 0)
     q4 = leg.thigh_angle - leg.shank_angle + (gap if knee_forward else -gap)
     c4, s4 = math.cos(-q4), math.sin(-q4)
-    (t0, t1), (s0, s1) = leg.thigh_yz, leg.shank_yz
     m0, m1 = s0 + (c4 * t0 - s4 * t1), s1 + (s4 * t0 + c4 * t1)
     q5 = _wrap(math.atan2(m1, m0) - math.atan2(v1, v0))
-    # 3. the hip: R123 = Ra(q1) Ry(q2) Rx(q3)
-    r123 = _times_rx(_times_ry(rotation, -q6), -(q4 + q5))
-    q1 = _yaw_pitch(leg, (r123[0], r123[3], r123[6]))
-    rest = _mul(leg.yaw_pitch.rotation(-q1), r123)
-    q2 = math.atan2(-rest[6], rest[0])
-    # (Ry(-q2) @ rest): row 1 is rest's, row 2 is (sin q2, 0, cos q2) @ rest
-    c2, s2 = math.cos(-q2), math.sin(-q2)
-    q3 = math.atan2(-s2 * rest[1] + c2 * rest[7], rest[4])
+    # 5. the hip pitch takes the rest of phi
+    q3 = _wrap(phi - q4 - q5)
     return [q1, q2, q3, q4, q5, q6], reachable
 
 
@@ -399,81 +398,6 @@ def _yaw_pitch(leg: _Leg, column: Vec3) -> float:
     key_first = (max(low - first, first - high, 0.0), abs(first))
     key_second = (max(low - second, second - high, 0.0), abs(second))
     return second if key_second < key_first else first
-
-
-def _leg_forward(leg: _Leg, q: list[float]) -> tuple[Rot, Vec3, list[Vec3], list[Vec3]]:
-    """Forward kinematics of one leg: foot rotation, ankle-roll anchor, and every joint's
-    anchor and axis in the torso frame, for angles ``q`` (radians).
-
-    Joints 1 and 2 sit at the hip; each later joint's anchor is the previous one plus the
-    turned offset. An x (y) axis turned by the chain is the rotation's first (second) column.
-    """
-    hip = leg.hip
-    r = leg.yaw_pitch.rotation(q[0])
-    anchors = [hip, hip]
-    axes = [leg.yaw_pitch_axis, (r[1], r[4], r[7])]
-    r = _times_ry(r, q[1])
-    position = hip
-    for offset, angle in ((leg.pitch_offset, q[2]), (leg.thigh, q[3]), (leg.shank, q[4])):
-        ox, oy, oz = _apply(r, offset)
-        position = (position[0] + ox, position[1] + oy, position[2] + oz)
-        anchors.append(position)
-        axes.append((r[0], r[3], r[6]))
-        r = _times_rx(r, angle)
-    ox, oy, oz = _apply(r, leg.ankle)
-    position = (position[0] + ox, position[1] + oy, position[2] + oz)
-    anchors.append(position)
-    axes.append((r[1], r[4], r[7]))
-    return _times_ry(r, q[5]), position, anchors, axes
-
-
-#: Newton steps stop once position (m) and orientation errors are below this: a micrometre is
-#: far below what a joint command in hundredths of a degree can express.
-REFINE_TOLERANCE = 1e-6
-
-
-def _refine(
-    leg: _Leg, q: list[float], rotation: Rot, roll_anchor: Vec3, steps: int = 8
-) -> list[float]:
-    """Newton steps on the full chain (geometric Jacobian) from a close start: the closed form
-    is off by the small hip-pitch offset's effect only, so one or two steps reach 1e-6 m."""
-    for _ in range(steps):
-        current, end, anchors, axes = _leg_forward(leg, q)
-        # turn = rotation @ current.T; its skew part is the orientation error
-        t = _mul_t(rotation, current)
-        error = [
-            roll_anchor[0] - end[0],
-            roll_anchor[1] - end[1],
-            roll_anchor[2] - end[2],
-            0.5 * (t[7] - t[5]),
-            0.5 * (t[2] - t[6]),
-            0.5 * (t[3] - t[1]),
-        ]
-        if max(abs(e) for e in error) < REFINE_TOLERANCE:
-            break
-        # column i: the axis crossed with the lever from joint i to the end, then the axis
-        ex, ey, ez = end
-        columns = []
-        for (ax, ay, az), (px, py, pz) in zip(axes, anchors, strict=True):
-            lx, ly, lz = ex - px, ey - py, ez - pz
-            columns.append((ay * lz - az * ly, az * lx - ax * lz, ax * ly - ay * lx, ax, ay, az))
-        try:  # LAPACK on a 6x6 costs less than elimination written in Python
-            step = np.linalg.solve(np.array(columns).T, error).tolist()
-        except np.linalg.LinAlgError:  # a stretched or folded leg: keep the closest so far
-            break
-        q = [a + d for a, d in zip(q, step, strict=True)]
-    return q
-
-
-def _mul_t(a: Rot, b: Rot) -> Rot:
-    """a @ b.T."""
-    a0, a1, a2, a3, a4, a5, a6, a7, a8 = a
-    b0, b1, b2, b3, b4, b5, b6, b7, b8 = b
-    return (
-        a0 * b0 + a1 * b1 + a2 * b2, a0 * b3 + a1 * b4 + a2 * b5, a0 * b6 + a1 * b7 + a2 * b8,
-        a3 * b0 + a4 * b1 + a5 * b2, a3 * b3 + a4 * b4 + a5 * b5, a3 * b6 + a4 * b7 + a5 * b8,
-        a6 * b0 + a7 * b1 + a8 * b2, a6 * b3 + a7 * b4 + a8 * b5, a6 * b6 + a7 * b7 + a8 * b8,
-    )  # fmt: skip
 
 
 #: (ankle roll flipped by half a turn, knee bent the other way), the usual branch first
