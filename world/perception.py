@@ -507,7 +507,12 @@ def _write_polar(polar: Polar) -> str:
 
 
 def _write_player(player: SeenPlayer) -> str:
-    parts = "".join(f" ({part} {_write_polar(polar)})" for part, polar in player.parts.items())
+    parts = "".join(
+        [
+            " (%s (pol %.2f %.2f %.2f))" % (part, p.distance, p.phi, p.theta)  # noqa: UP031
+            for part, p in player.parts.items()
+        ]
+    )
     return f"(P (team {player.team}) (id {player.unum}){parts})"
 
 
@@ -515,11 +520,18 @@ def _write_vision(vision: Vision) -> str:
     # real server: one group for the field objects and one per robot, then the lines
     split = vision.players_before_landmarks
     items = [_write_player(player) for player in vision.players[:split]]
-    items.extend(f"({name} {_write_polar(polar)})" for name, polar in vision.landmarks.items())
+    items.extend(
+        "(%s (pol %.2f %.2f %.2f))" % (name, p.distance, p.phi, p.theta)  # noqa: UP031
+        for name, p in vision.landmarks.items()
+    )
     if vision.ball is not None:
         items.append(f"(B {_write_polar(vision.ball)})")
     items.extend(_write_player(player) for player in vision.players[split:])
-    items.extend(f"(L {_write_polar(a)} {_write_polar(b)})" for a, b in vision.lines)
+    items.extend(
+        "(L (pol %.2f %.2f %.2f) (pol %.2f %.2f %.2f))"  # noqa: UP031
+        % (a.distance, a.phi, a.theta, b.distance, b.phi, b.theta)
+        for a, b in vision.lines
+    )
     return "(See " + " ".join(items) + ")" if items else "(See)"
 
 
