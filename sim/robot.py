@@ -514,16 +514,23 @@ class SimRobot:
         force on the foot, both in the foot's frame (centre relative to the foot box centre)."""
         contacts = pybullet.getContactPoints(bodyA=self.body_id, physicsClientId=self._client)
         sums: dict[str, list] = {}
+        sensor_of_link, body = self._sensor_of_link, self.body_id
         for c in contacts:
-            sensor = self._sensor_of_link.get(c[3]) if c[1] == self.body_id else None
-            if sensor is None or c[9] <= 0.0:
+            sensor = sensor_of_link.get(c[3]) if c[1] == body else None
+            n = c[9]
+            if sensor is None or n <= 0.0:
                 continue  # another body, or a point within Bullet's margin carrying no load
-            n, f1, f2 = c[9], c[10], c[12]
-            normal, d1, d2, pos = c[7], c[11], c[13], c[5]
-            acc = sums.setdefault(sensor, [0.0] * 7)
-            for i in range(3):
-                acc[i] += n * normal[i] + f1 * d1[i] + f2 * d2[i]
-                acc[3 + i] += n * pos[i]
+            _, _, _, _, _, pos, _, normal, _, _, f1, d1, f2, d2 = c
+            acc = sums.get(sensor)
+            if acc is None:
+                acc = sums[sensor] = [0.0] * 7
+            # unrolled over x, y, z (hot loop: every contact point of every robot, every cycle)
+            acc[0] += n * normal[0] + f1 * d1[0] + f2 * d2[0]
+            acc[1] += n * normal[1] + f1 * d1[1] + f2 * d2[1]
+            acc[2] += n * normal[2] + f1 * d1[2] + f2 * d2[2]
+            acc[3] += n * pos[0]
+            acc[4] += n * pos[1]
+            acc[5] += n * pos[2]
             acc[6] += n
         if not sums:
             return {}  # no foot touches anything
