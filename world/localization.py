@@ -357,7 +357,7 @@ class Localizer:
         """Iterated EKF update: the pose that best fits the prior and all measurements, its
         covariance, and (with ``check``, starting at the prior) whether every landmark agreed
         with the prior within the kidnap gate."""
-        info_prior = np.linalg.inv(cov)
+        info_prior = _inverse3(cov)
         state = (prior if start is None else start).copy()
         n = len(field)
         ranges = np.hypot(seen[:, 0], seen[:, 1])
@@ -396,17 +396,40 @@ class Localizer:
             info = info_prior + hw @ h
             delta_prior = prior - state
             delta_prior[2] = _wrap_rad(delta_prior[2])
-            state = state + np.linalg.solve(info, info_prior @ delta_prior + hw @ r)
+            info_inverse = _inverse3(info)
+            state = state + info_inverse @ (info_prior @ delta_prior + hw @ r)
             state[2] = _wrap_rad(state[2])
-        return state, np.linalg.inv(info), agrees
+        return state, _inverse3(info), agrees
 
     def _agrees(self, innovation: Array, jac: Array, cov: Array, variances: Array) -> bool:
         """Whether every landmark's innovation fits S = H P H^T + R within the kidnap gate."""
         s = jac @ cov @ jac.transpose(0, 2, 1)
-        s[:, 0, 0] += variances[:, 0]
-        s[:, 1, 1] += variances[:, 1]
-        chi2 = np.einsum("ni,nij,nj->n", innovation, np.linalg.inv(s), innovation)
+        a = s[:, 0, 0] + variances[:, 0]
+        d = s[:, 1, 1] + variances[:, 1]
+        b, c = s[:, 0, 1], s[:, 1, 0]
+        i, j = innovation[:, 0], innovation[:, 1]
+        # i^T S^-1 i with the 2x2 inverse written out (one landmark per row)
+        chi2 = (d * i * i - (b + c) * i * j + a * j * j) / (a * d - b * c)
         return bool(np.all(chi2 < self.config.kidnap_chi2))
+
+
+def _inverse3(m: Array) -> Array:
+    """The inverse of a 3x3 matrix by its adjugate: for the filter's small, well-conditioned
+    information and covariance matrices this is several times cheaper than ``np.linalg.inv``
+    (whose fixed cost dominates at this size) and agrees with it to rounding."""
+    (a, b, c), (d, e, f), (g, h, i) = m.tolist()
+    co_a, co_b, co_c = e * i - f * h, f * g - d * i, d * h - e * g
+    det = a * co_a + b * co_b + c * co_c
+    if det == 0.0:
+        raise np.linalg.LinAlgError("singular 3x3 matrix")
+    k = 1.0 / det
+    return np.array(
+        [
+            [co_a * k, (c * h - b * i) * k, (b * f - c * e) * k],
+            [co_b * k, (a * i - c * g) * k, (c * d - a * f) * k],
+            [co_c * k, (b * g - a * h) * k, (a * e - b * d) * k],
+        ]
+    )
 
 
 def _range_bearing(state: Array, field: Array) -> tuple[Array, Array]:
