@@ -4,7 +4,7 @@ changes WOULD buy (measured here, not adopted).
     .venv/bin/python benchmarks/physics.py                 # cycles_per_s[substeps=S,robots=N]
     .venv/bin/python benchmarks/physics.py --split         # Bullet's own timers, 22 robots
     .venv/bin/python benchmarks/physics.py --variants      # speed, stance, fidelity per variant
-    .venv/bin/python benchmarks/physics.py --variant iters15 --pytest tests/test_walk.py
+    .venv/bin/python benchmarks/physics.py --variant iters15 --pytest tests/test_walk.py -q
 
 ``cycles_per_s``: each cycle does what the server does per robot: new joint speeds, one world
 step, sensor update, joint angles, gyro, accelerometer and foot pressure.
@@ -291,7 +291,9 @@ def main() -> None:
     parser.add_argument("--split", action="store_true", help="Bullet's step split, 22 robots")
     parser.add_argument("--variants", action="store_true", help="every variant in VARIANTS")
     parser.add_argument("--variant", choices=sorted(VARIANTS), help="one variant")
-    parser.add_argument("--pytest", nargs="+", metavar="ARG", help="run pytest in --variant")
+    parser.add_argument(
+        "--pytest", nargs=argparse.REMAINDER, metavar="ARG", help="run pytest in --variant (last)"
+    )
     args = parser.parse_args()
     if args.pytest:
         import pytest
