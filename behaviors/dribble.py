@@ -342,8 +342,9 @@ class DribbleSkill(Skill):
 
     @property
     def gait_phase(self) -> tuple[int, bool]:
-        """The phase in the gait's own (left-footed) frame: for a right-footed dribble,
-        ``left_active`` names the leg that plays the left-footed gait's left leg."""
+        """The phase in the gait's own (left-footed) frame: ``left_active`` is True while the
+        leg playing the left-footed gait's left leg swings (the right leg, for a right-footed
+        dribble). A mirrored policy trained on the left foot reads this one."""
         if self._engine is None:
             return (-1, False)
         return self._engine.phase
@@ -361,7 +362,10 @@ class DribbleSkill(Skill):
     ) -> bool:
         robot_type = context.world.robot.robot_type
         engine = self.engine_for(kind, robot_type)
-        self._mirror = foot == "right"
+        mirror = foot == "right"
+        if mirror != self._mirror:  # the engine's feet are in the other side's frame
+            engine.reset()
+            self._mirror = mirror
         gait = dribble_gait(kind, robot_type)
         inputs = _perceived_inputs(context, direction_deg)
         if inputs is None:  # lost the ball or the own pose: tread on the spot until seen
