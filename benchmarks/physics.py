@@ -121,13 +121,38 @@ def bullet_split(robots: int = 22, cycles: int = 30) -> dict[str, float]:
         files = sorted(Path(folder).glob("timings.json*"))
         totals, counts = _scope_totals(json.loads(files[0].read_text()))
     step = totals["internalSingleStepSimulation"]
+    iterations, residual = solver_analytics(robots)
     shares = {name: totals[name] / step for name in SPLIT_SCOPES if name in totals}
     steps = counts["internalSingleStepSimulation"]
     shares["contact_constraints_per_robot_step"] = (
         counts["setupMultiBodyContactConstraint"] / steps / robots
     )
     shares["contact_points_per_robot"] = contacts / robots
+    shares["solver_iterations_used_mean"] = iterations
+    shares["solver_remaining_residual_mean"] = residual
     return shares
+
+
+def solver_analytics(robots: int = 22, steps: int = 20) -> tuple[float, float]:
+    """Mean iterations the solver used per island and the residual it left
+    (``reportSolverAnalytics``): all of them used means the step never converges early, so
+    the iteration count sets the solver's cost."""
+    world, team = _world_with_robots(2, robots)
+    for _ in range(20):
+        world.step_cycle()
+    pybullet.setPhysicsEngineParameter(reportSolverAnalytics=1, physicsClientId=world.client)
+    islands = []
+    for _ in range(steps):
+        for robot in team:
+            robot.before_cycle()
+            robot.before_substep(0.0)
+        islands.extend(pybullet.stepSimulation(physicsClientId=world.client) or [])
+    world.close()
+    n = max(1, len(islands))
+    return (
+        sum(i["numIterationsUsed"] for i in islands) / n,
+        sum(i["remainingResidual"] for i in islands) / n,
+    )
 
 
 def _scope_totals(trace: dict | list) -> tuple[collections.Counter, collections.Counter]:
