@@ -21,6 +21,7 @@ prints every improvement and at the end the best entry as YAML, to paste into ``
 from __future__ import annotations
 
 import argparse
+import json
 import statistics
 import sys
 from collections.abc import Mapping
@@ -48,27 +49,29 @@ class Parameter:
     start: float
 
 
-#: name -> range and start value. Angles in degrees (left kick; support = right leg).
+#: name -> range and start value. Angles in degrees (left kick; support = right leg). The start
+#: values are the best of a first search from the hand-made kick (2.2 m at full strength).
 PARAMETERS: dict[str, Parameter] = {
-    "roll": Parameter(8, 20, 14),  # hip and ankle roll moving the weight onto the support foot
-    "wind_hip": Parameter(-25, 10, -20),  # kicking leg at the end of the wind-up
-    "wind_knee": Parameter(-130, -70, -110),
-    "wind_ankle": Parameter(0, 70, 50),
-    "wind_support_hip": Parameter(0, 50, 15),  # support leg at the end of the wind-up
-    "wind_support_knee": Parameter(-70, 0, -30),
-    "contact_hip": Parameter(10, 70, 38),  # kicking leg at the end of the first swing frame
-    "contact_knee": Parameter(-100, -10, -60),
-    "contact_ankle": Parameter(-30, 60, 24),
-    "end_hip": Parameter(40, 100, 75),  # kicking leg at the end of the swing
-    "end_knee": Parameter(-60, 0, -10),
-    "end_ankle": Parameter(-45, 30, -20),
-    "end_support_hip": Parameter(-30, 30, 15),  # support leg at the end of the swing
-    "end_support_knee": Parameter(-40, 0, -30),
-    "end_support_ankle": Parameter(-20, 50, 17),
-    "swing_s": Parameter(0.12, 0.4, 0.32),  # both swing frames together at full strength
-    "contact_share": Parameter(0.3, 0.8, 0.6),  # share of the swing spent on the first frame
-    "ball_gap_m": Parameter(-0.02, 0.1, 0.03),
-    "ball_side_m": Parameter(-0.04, 0.04, 0.0),
+    "roll": Parameter(8, 20, 13.6),  # hip and ankle roll moving the weight onto the support foot
+    "wind_s": Parameter(0.15, 0.5, 0.2),  # duration of the wind-up frame
+    "wind_hip": Parameter(-25, 10, -20.5),  # kicking leg at the end of the wind-up
+    "wind_knee": Parameter(-130, -70, -110.5),
+    "wind_ankle": Parameter(0, 70, 55.4),
+    "wind_support_hip": Parameter(-10, 50, 12.7),  # support leg at the end of the wind-up
+    "wind_support_knee": Parameter(-70, 0, -39.5),
+    "contact_hip": Parameter(10, 70, 41.6),  # kicking leg at the end of the first swing frame
+    "contact_knee": Parameter(-100, -10, -74.0),
+    "contact_ankle": Parameter(-30, 60, 20.5),
+    "end_hip": Parameter(40, 100, 74.3),  # kicking leg at the end of the swing
+    "end_knee": Parameter(-60, 0, -12.2),
+    "end_ankle": Parameter(-45, 30, -18.7),
+    "end_support_hip": Parameter(-25, 40, 12.8),  # support leg at the end of the swing
+    "end_support_knee": Parameter(-60, 0, -31.6),
+    "end_support_ankle": Parameter(-20, 60, 19.8),
+    "swing_s": Parameter(0.12, 0.4, 0.314),  # both swing frames together at full strength
+    "contact_share": Parameter(0.3, 0.8, 0.70),  # share of the swing spent on the first frame
+    "ball_gap_m": Parameter(-0.02, 0.1, 0.024),
+    "ball_side_m": Parameter(-0.04, 0.04, -0.003),
 }
 
 
@@ -100,7 +103,7 @@ def kick_entry(p: Mapping[str, float]) -> dict[str, Any]:
         {"duration": 0.5, "hold": 0.15, "pose": "stand", "joints": shift},
         {"duration": 0.2, "joints": kicking(30, -100, 60)},
         {
-            "duration": 0.2,
+            "duration": round(p["wind_s"], 3),
             "hold": 0.04,
             "joints": {
                 **kicking(p["wind_hip"], p["wind_knee"], p["wind_ankle"]),
@@ -135,9 +138,7 @@ def kick_entry(p: Mapping[str, float]) -> dict[str, Any]:
 def _within_limits(angles: Mapping[str, float]) -> dict[str, float]:
     """Angles clipped into the joints' ranges (type 0's, the narrowest) and rounded."""
     limits = {j.perceptor: (j.min_deg, j.max_deg) for j in robot_spec(0).joints}
-    return {
-        n: round(min(max(a, limits[n][0]), limits[n][1]), 1) for n, a in angles.items()
-    }
+    return {n: round(min(max(a, limits[n][0]), limits[n][1]), 1) for n, a in angles.items()}
 
 
 def motions_for(p: Mapping[str, float]) -> dict[str, KickMotion]:
@@ -182,6 +183,7 @@ def search(
                 best, best_score, improved = child, score, True
                 shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
                 print(f"gen {generation}: {best_score:.2f} ({shown})", flush=True)
+                print(f"  parameters: {json.dumps(best)}", flush=True)
         if not improved:
             step /= 2
     return best
