@@ -179,13 +179,18 @@ class BallModel:
         if self._state is None:
             self._restart(z, noise, None, None, time)
             return
-        h_cov = self._cov[:2, :2] + noise * np.eye(2)
+        # the innovation covariance is 2x2: its inverse written out costs far less than
+        # np.linalg's fixed overhead
+        (a, b), (c, d) = self._cov[:2, :2].tolist()
+        a, d = a + noise, d + noise
+        det = a * d - b * c
+        h_inverse = np.array([[d / det, -b / det], [-c / det, a / det]])
         innovation = z - self._state[:2]
-        chi2 = float(innovation @ np.linalg.solve(h_cov, innovation))
+        chi2 = float(innovation @ h_inverse @ innovation)
         if chi2 > self.config.restart_chi2:
             self._restart(z, noise, previous_position, previous_seen, time)
             return
-        gain = self._cov[:, :2] @ np.linalg.inv(h_cov)
+        gain = self._cov[:, :2] @ h_inverse
         self._state = self._state + gain @ innovation
         self._cov = self._cov - gain @ self._cov[:2, :]
 
