@@ -170,6 +170,12 @@ class Localizer:
         self._line_length = np.linalg.norm(direction, axis=1)
         self._line_dir = direction / self._line_length[:, None]
         self._line_normal = np.stack([-self._line_dir[:, 1], self._line_dir[:, 0]], axis=1)
+        # a point's offset from / position along each line is a product with this (2, 2 lines)
+        # matrix minus the line start's own: one matrix product per image for all pieces
+        self._line_frames = np.concatenate([self._line_normal, self._line_dir]).T
+        self._line_frame_starts = np.einsum(
+            "xl,lx->l", self._line_frames, np.concatenate([self._line_start, self._line_start])
+        )
         if self._state is not None and (old == "right") != (side == "right"):
             x, y, h = self._state
             self._state = np.array([-x, -y, _wrap_rad(h + math.pi)])
@@ -310,9 +316,9 @@ class Localizer:
         c, s = math.cos(state[2]), math.sin(state[2])
         rot = np.array([[c, -s], [s, c]])
         ends = lines @ rot.T + state[:2]  # (k, 2 ends, 2) in the field
-        rel = ends[:, :, None, :] - self._line_start[None, None]  # (k, 2, lines, 2)
-        off = np.einsum("kelx,lx->kel", rel, self._line_normal)
-        along = np.einsum("kelx,lx->kel", rel, self._line_dir)
+        n_lines = len(self._line_length)
+        frames = ends @ self._line_frames - self._line_frame_starts  # (k, 2 ends, 2 lines)
+        off, along = frames[..., :n_lines], frames[..., n_lines:]  # (k, 2 ends, lines) each
         ranges = np.hypot(lines[..., 0], lines[..., 1])  # (k, 2)
         pose_sigma = math.sqrt(max(cov[0, 0], cov[1, 1])) + ranges * math.sqrt(cov[2, 2])
         gate = cfg.line_gate_m + 3.0 * pose_sigma  # (k, 2)
