@@ -298,10 +298,12 @@ def fidelity_checks() -> dict[str, bool]:
     return checks
 
 
-def report_variant(name: str, cycles: int) -> None:
+def report_variant(name: str, cycles: int, checks: bool = True) -> None:
     with VARIANTS[name]():
         print(f"step_ms[{name},robots=1]: {step_ms(1, cycles):.2f}", flush=True)
         print(f"step_ms[{name},robots=22]: {step_ms(22, max(20, cycles // 10)):.2f}", flush=True)
+        if not checks:
+            return
         for robot_type in (0, 4):
             drop, tilt = idle_stance(robot_type)
             print(f"idle_height_drop_m[{name},type={robot_type}]: {drop:.4f}")
@@ -316,6 +318,7 @@ def main() -> None:
     parser.add_argument("--split", action="store_true", help="Bullet's step split, 22 robots")
     parser.add_argument("--variants", action="store_true", help="every variant in VARIANTS")
     parser.add_argument("--variant", choices=sorted(VARIANTS), help="one variant")
+    parser.add_argument("--speed-only", action="store_true", help="variants: no stance/fidelity")
     parser.add_argument(
         "--pytest", nargs=argparse.REMAINDER, metavar="ARG", help="run pytest in --variant (last)"
     )
@@ -331,7 +334,7 @@ def main() -> None:
         return
     if args.variants or args.variant:
         for name in [args.variant] if args.variant else list(VARIANTS):
-            report_variant(name, args.cycles)
+            report_variant(name, args.cycles, checks=not args.speed_only)
         return
     for substeps in (1, 2, 4):
         for robots in (1, 22):
