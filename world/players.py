@@ -44,13 +44,15 @@ class PlayerObservation:
 
 
 def _standing_point(parts: Mapping[str, Vec3]) -> tuple[float, float]:
-    feet = [parts[name] for name in ("lfoot", "rfoot") if name in parts]
-    chosen = feet if len(feet) == 2 else list(parts.values())
-    # plain floats: this runs for every robot in every image
-    return (
-        sum(p[0] for p in chosen) / len(chosen),
-        sum(p[1] for p in chosen) / len(chosen),
-    )
+    # plain floats and no generators: this runs for every robot in every image
+    left, right = parts.get("lfoot"), parts.get("rfoot")
+    if left is not None and right is not None:
+        return ((left[0] + right[0]) / 2, (left[1] + right[1]) / 2)
+    x = y = 0.0
+    for p in parts.values():
+        x += p[0]
+        y += p[1]
+    return (x / len(parts), y / len(parts))
 
 
 class PlayerTracker:
