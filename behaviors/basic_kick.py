@@ -55,7 +55,13 @@ BACK_OFF_M = 0.15
 WALK_OVERSHOOT_M = 0.03
 #: Cycles in the stand pose between the walk's stop and the kick: the walk stands with other
 #: angles, and the kick's weight shift from those tipped the robot over.
-SETTLE_CYCLES = 20
+SETTLE_CYCLES = 50
+#: When the straight way to the kicking spot passes closer than this (m) to the ball, the robot
+#: first walks round it, to a point ``DETOUR_BEHIND_M`` behind the ball and ``DETOUR_SIDE_M``
+#: to the side it is on (the spot itself lies about 0.19 m from the ball).
+DETOUR_CLEARANCE_M = 0.15
+DETOUR_BEHIND_M = 0.3
+DETOUR_SIDE_M = 0.45
 #: The kicking foot is chosen anew every cycle until the robot is this close (m) to the ball.
 CHOOSE_FOOT_DISTANCE_M = 0.6
 #: "long" asks for the strongest kick.
@@ -125,6 +131,34 @@ def kick_spot(
     return (ball[0] - c * fx + s * fy, ball[1] - s * fx - c * fy, math.degrees(heading))
 
 
+def detour_point(
+    ball: tuple[float, float],
+    spot: tuple[float, float, float],
+    robot: tuple[float, float],
+) -> tuple[float, float] | None:
+    """A point behind the ball and beside it, on the robot's side, to walk to first when the
+    straight way from the robot to the kicking ``spot`` (x, y, heading deg) passes closer than
+    :data:`DETOUR_CLEARANCE_M` to the ball; None when the way is clear."""
+    if _distance_to_segment(ball, robot, spot[:2]) >= DETOUR_CLEARANCE_M:
+        return None
+    if math.dist(robot, ball) < DETOUR_CLEARANCE_M:
+        return None  # already at the ball: a detour would not help
+    c, s = math.cos(math.radians(spot[2])), math.sin(math.radians(spot[2]))
+    across = -s * (robot[0] - ball[0]) + c * (robot[1] - ball[1])
+    side = DETOUR_SIDE_M if across >= 0 else -DETOUR_SIDE_M
+    return (ball[0] - c * DETOUR_BEHIND_M - s * side, ball[1] - s * DETOUR_BEHIND_M + c * side)
+
+
+def _distance_to_segment(
+    point: tuple[float, float], start: tuple[float, float], end: tuple[float, float]
+) -> float:
+    px, py = point[0] - start[0], point[1] - start[1]
+    ex, ey = end[0] - start[0], end[1] - start[1]
+    length2 = ex * ex + ey * ey
+    t = 0.0 if length2 == 0 else min(max((px * ex + py * ey) / length2, 0.0), 1.0)
+    return math.hypot(px - t * ex, py - t * ey)
+
+
 class BasicKickSkill(Skill):
     """``execute("basic_kick", target_x, target_y, distance)``: walk, align, kick towards the
     team-frame point; ``distance`` in metres or ``"long"``. Finished when the kick motion has
@@ -184,11 +218,15 @@ class BasicKickSkill(Skill):
     ) -> None:
         assert self.foot is not None
         world = context.world
-        ball = world.ball.position
-        assert ball is not None
+        ball, pose = world.ball.position, world.pose
+        assert ball is not None and pose is not None
         offset = self._stand_offset(context, motion)
         x, y, heading = kick_spot(ball, target, offset)
         aim = math.radians(heading)
+        detour = detour_point(ball, (x, y, heading), (pose.x, pose.y))
+        if detour is not None:
+            context.manager.execute_sub_behavior("walk", *detour, None)
+            return
         beyond = -BACK_OFF_M if self.phase == "back_off" else WALK_OVERSHOOT_M
         x += beyond * math.cos(aim)
         y += beyond * math.sin(aim)
@@ -256,11 +294,3 @@ class BasicKickSkill(Skill):
     @staticmethod
     def _look_down(context: SkillContext) -> None:
         context.commands.set_targets({"hj1": 0.0, "hj2": HEAD_PITCH_DEG})
-
-
-def _speed(error: float, deadband: float, gain: float, low: float, high: float) -> float:
-    """Walk speed that takes ``error`` off: 0 within ``deadband``, else ``gain * error`` with
-    its size kept in [low, high]."""
-    if abs(error) < deadband:
-        return 0.0
-    return math.copysign(min(max(abs(gain * error), low), high), error)

@@ -70,6 +70,8 @@ PARAMETERS: dict[str, Parameter] = {
     "end_support_ankle": Parameter(-20, 60, 19.8),
     "swing_s": Parameter(0.12, 0.4, 0.314),  # both swing frames together at full strength
     "contact_share": Parameter(0.3, 0.8, 0.70),  # share of the swing spent on the first frame
+    "recover_s": Parameter(0.2, 0.8, 0.3),  # back from the swing to the bent knee
+    "stand_s": Parameter(0.4, 1.2, 0.6),  # from there to the stand
     "ball_gap_m": Parameter(-0.02, 0.1, 0.024),
     "ball_side_m": Parameter(-0.04, 0.04, -0.003),
 }
@@ -123,8 +125,11 @@ def kick_entry(p: Mapping[str, float]) -> dict[str, Any]:
                 **support(p["end_support_hip"], p["end_support_knee"], p["end_support_ankle"]),
             },
         },
-        {"duration": 0.3, "joints": {**kicking(40, -90, 45), **support(15, -30, 17)}},
-        {"duration": 0.6, "hold": 0.3, "pose": "stand"},
+        {
+            "duration": round(p["recover_s"], 3),
+            "joints": {**kicking(40, -90, 45), **support(15, -30, 17)},
+        },
+        {"duration": round(p["stand_s"], 3), "hold": 0.3, "pose": "stand"},
     ]
     return {
         "description": "left-foot kick found by learning/kick_search.py",

@@ -15,7 +15,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from behaviors.basic_kick import BasicKickSkill, expected_ball_ego, kick_spot
+from behaviors.basic_kick import BasicKickSkill, detour_point, expected_ball_ego, kick_spot
 from behaviors.joint_control import JointCommands
 from behaviors.kick import KICK_LEFT, KickMotion, KickSkill, default_kicks, kick_motion, parse_kicks
 from behaviors.mirror import MIRROR_TABLE
@@ -119,6 +119,17 @@ def test_kick_spot_puts_the_ball_at_the_offset_facing_the_target():
     assert heading == pytest.approx(90.0)
     # facing +y: forward is +y, left is -x
     assert (ball[1] - y, -(ball[0] - x)) == pytest.approx(offset)
+
+
+def test_a_robot_beyond_the_ball_walks_round_it_on_its_own_side():
+    ball = (0.0, 0.0)
+    spot = kick_spot(ball, (5.0, 0.0), (0.18, 0.05))  # kick towards +x: spot behind, at -x
+    assert detour_point(ball, spot, (-1.0, 0.1)) is None  # behind the ball: straight there
+    assert detour_point(ball, spot, spot[:2]) is None  # at the spot
+    left = detour_point(ball, spot, (1.0, 0.05))  # beyond the ball, a little to its left
+    assert left is not None and left[0] < -0.2 and left[1] > 0.3
+    right = detour_point(ball, spot, (1.0, -0.2))
+    assert right is not None and right[1] < -0.3
 
 
 def test_the_ball_is_expected_mirror_symmetrically_in_front_of_either_foot():
