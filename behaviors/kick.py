@@ -15,6 +15,11 @@ cap the motion, so this is the strongest kick), at strength 0 ``slow_s``; in bet
 strength. The swing frames track predictively (``track: predictive``): the gain controller's
 four-cycle lag would cut off a fast swing before the foot reaches the ball.
 
+Each kick also says where it wants the ball (``ball_gap_m`` ahead of the toe, ``ball_side_m``
+outwards), which ``basic_kick`` aligns to, and may carry a calibration table ``distances``
+(strength -> metres, measured by ``benchmarks/kick.py``) from which :meth:`KickMotion.strength_for`
+picks the strength for a distance.
+
 Sequences are looked up per robot type first (``kick_left_type3``), then by the common name, as
 the get-up does.
 """

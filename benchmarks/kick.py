@@ -1,18 +1,28 @@
-"""Kick trials: a robot stands, the trainer places the ball in front of one foot, ``kick`` runs.
+"""Kick trials: ``kick`` from a stand with the ball placed at the foot, and ``basic_kick``.
 
-A trial: one robot in an in-process :class:`~sim.session.Session` beamed to (-1, 0) facing +x
-rises slowly into ``stand``; the trainer puts the ball (at rest) ``gap`` metres in front of the
-toe of the kicking foot and sets PlayOn. From then on the agent side runs alone through
-perception bytes (``learning.local_agent.LocalAgent``) with ``execute("kick", foot, strength)``
-until the skill finishes, then holds ``stand`` for three seconds while the ball rolls out.
-Measured from the simulator: how far the ball went, its direction against the robot's facing,
-whether the robot fell at any time, and the time from the first kick cycle to the first cycle
-the ball moves (faster than 0.1 m/s).
+Stand kicks: one robot in an in-process :class:`~sim.session.Session` beamed to (-1, 0) facing +x
+rises slowly into ``stand``; the trainer puts the ball (at rest) where the kick expects it
+(``ball_gap_m`` ahead of the kicking foot's toe, ``ball_side_m`` outwards, from ``kicks.yaml``)
+and sets PlayOn. From then on the agent side runs alone through perception bytes
+(``learning.local_agent.LocalAgent``) with ``execute("kick", foot, strength)`` until the skill
+finishes, then holds ``stand`` for three seconds while the ball rolls out. Measured from the
+simulator: how far the ball went, its direction against the robot's facing, whether the robot
+fell at any time, and the time from the first kick cycle to the first cycle the ball moves
+(faster than 0.1 m/s).
 
-Run: ``.venv/bin/python benchmarks/kick.py [--seeds 3] [--robot-type 0]``; prints
-``kick_distance_m[strength=S]`` (median over seeds and both feet),
-``kick_direction_error_deg_median``, ``kick_falls`` (count over all trials), ``kick_time_s``
-(median).
+Basic kicks: the same standing robot, the ball 0.5-2 m away at a random bearing, a target
+``distance`` m from the ball within 45 deg of the line robot -> ball;
+``execute("basic_kick", x, y, distance)`` runs until it finishes (or 20 s). Measured: ball
+travel from where it lay when the kick hit it, direction error against the target, falls, and
+the time from the first ``basic_kick`` cycle to the ball moving (walking included).
+
+Run: ``.venv/bin/python benchmarks/kick.py [--seeds 3] [--robot-type 0] [--strengths ...]
+[--basic-trials 20] [--basic-distance 3|long]``; prints ``kick_distance_m[strength=S]``
+(median over seeds and both feet), ``kick_direction_error_deg_median``, ``kick_falls``,
+``kick_time_s`` (median), then ``basic_kick_distance_m``, ``basic_kick_direction_error_deg``,
+``basic_kick_time_s`` (medians over the trials that kicked), ``basic_kick_falls`` and
+``basic_kick_not_kicked``. ``--strengths`` with no value skips the stand kicks,
+``--basic-trials 0`` the basic ones.
 """
 
 from __future__ import annotations
