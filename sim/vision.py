@@ -158,8 +158,10 @@ class VisionSensor:
         for owner, part, polar in zip(owners, parts, polars[index:], strict=True):
             if polar is None:
                 continue
-            robot = robots[owner]
-            player = seen.setdefault(owner, SeenPlayer(team=robot.team, unum=robot.unum))
+            player = seen.get(owner)
+            if player is None:  # (not setdefault: that would build a SeenPlayer per part)
+                robot = robots[owner]
+                player = seen[owner] = SeenPlayer(team=robot.team, unum=robot.unum)
             player.parts[part] = polar
         vision.players = [seen[k] for k in sorted(seen)]
         if self.sense_lines:
