@@ -88,6 +88,13 @@ def test_a_near_rolling_ball_is_not_chased():
     assert ahead_rolling > dribble_velocity(_inputs(0.22), gait)[0]
 
 
+def test_a_tilting_robot_calms_down():
+    gait = replace(GAIT, tilt_calm_deg=8.0, tilt_calm_range_deg=10.0, calm_min_share=0.3)
+    upright = dribble_velocity(DribbleInputs(0.2, 0.05, 0.0, 0.0, 10.0, 2.0), gait)
+    rocking = dribble_velocity(DribbleInputs(0.2, 0.05, 0.0, 0.0, 10.0, 30.0), gait)
+    assert rocking == pytest.approx(tuple(0.3 * v for v in upright))
+
+
 def test_within_reach_window():
     assert ball_within_reach(_inputs(0.2, 0.0), GAIT)
     assert not ball_within_reach(_inputs(0.05, 0.0), GAIT)
