@@ -19,7 +19,9 @@ Definitions (the report's figures mean exactly this):
   ``holding_fouls`` counts the referee's calls (play mode leaving PlayOn), ``max_held_s`` the
   longest the clock ran.
 
-``python -m benchmarks.dribble`` prints ``name: value`` lines for type 0 (``--types`` for more).
+``python -m benchmarks.dribble`` prints ``name: value`` lines for type 0 (``--types`` for more,
+``--seeds 0 1 2 ...`` for several runs each: speeds then average over the runs that reached
+the distance, counts add up).
 """
 
 from __future__ import annotations
@@ -76,9 +78,6 @@ class DribbleRun:
     def speed(self) -> float:
         """Ball speed along the direction (m/s) over the run; 0 unless it reached the goal."""
         return self.distance / self.seconds if self.reached and self.seconds > 0 else 0.0
-
-    def phase_medians(self) -> dict[tuple[int, bool], float]:
-        return {k: statistics.median(v) for k, v in sorted(self.phase_distances.items()) if v}
 
 
 def start_dribble_episode(
@@ -202,22 +201,34 @@ def run_dribble(
     return result
 
 
-def report_lines(run: DribbleRun) -> list[str]:
-    """The ``name: value`` lines of one run, named by gait and robot type."""
-    key = f"{run.kind}_{run.foot}" if run.foot != "left" else run.kind
-    t = f"type{run.robot_type}"
+def report_lines(runs: list[DribbleRun]) -> list[str]:
+    """The ``name: value`` lines of one or more runs of the same gait, robot type and foot
+    (several seeds): speeds over the runs that reached the distance, counts summed, the
+    ball's distance per phase as the median over every cycle of every run."""
+    first = runs[0]
+    key = f"{first.kind}_{first.foot}" if first.foot != "left" else first.kind
+    t = f"type{first.robot_type}"
+    reached = [r.speed for r in runs if r.reached]
     lines = [
-        f"{key}_mps[{t}]: {run.speed:.3f}",
-        f"{key}_distance_m[{t}]: {run.distance:.2f}",
-        f"{key}_seconds[{t}]: {run.seconds:.2f}",
-        f"{key}_ball_losses[{t}]: {run.ball_losses}",
-        f"{key}_max_ball_distance_m[{t}]: {run.max_gap:.2f}",
-        f"{key}_falls[{t}]: {int(run.fell)}",
-        f"{key}_holding_fouls[{t}]: {run.holding_fouls}",
-        f"{key}_max_held_s[{t}]: {run.max_held_s:.2f}",
+        f"{key}_mps[{t}]: {statistics.mean(reached) if reached else 0.0:.3f}",
+        f"{key}_mps_min[{t}]: {min(reached) if reached else 0.0:.3f}",
+        f"{key}_reached[{t}]: {len(reached)}/{len(runs)}",
+        f"{key}_distance_m[{t}]: {min(r.distance for r in runs):.2f}",
+        f"{key}_ball_losses[{t}]: {sum(r.ball_losses for r in runs)}",
+        f"{key}_max_ball_distance_m[{t}]: {max(r.max_gap for r in runs):.2f}",
+        f"{key}_falls[{t}]: {sum(int(r.fell) for r in runs)}",
+        f"{key}_holding_fouls[{t}]: {sum(r.holding_fouls for r in runs)}",
+        f"{key}_max_held_s[{t}]: {max(r.max_held_s for r in runs):.2f}",
     ]
-    for (phase_t, left), median in run.phase_medians().items():
+    pooled: dict[tuple[int, bool], list[float]] = defaultdict(list)
+    for run in runs:
+        for phase, distances in run.phase_distances.items():
+            pooled[phase].extend(distances)
+    for (phase_t, left), distances in sorted(pooled.items()):
+        if phase_t < 0 or not distances:
+            continue
         side = "left" if left else "right"
+        median = statistics.median(distances)
         lines.append(f"{key}_ball_distance_m[{t}][t={phase_t},{side}]: {median:.3f}")
     return lines
 
@@ -229,12 +240,15 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--foot", default="left", choices=("left", "right"))
     parser.add_argument("--distance", type=float, default=10.0)
     parser.add_argument("--direction", type=float, default=0.0)
-    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seeds", type=int, nargs="+", default=[0])
     args = parser.parse_args(argv)
     for robot_type in args.types:
         for kind in args.kinds:
-            run = run_dribble(kind, robot_type, args.distance, args.foot, args.direction, args.seed)
-            for line in report_lines(run):
+            runs = [
+                run_dribble(kind, robot_type, args.distance, args.foot, args.direction, seed)
+                for seed in args.seeds
+            ]
+            for line in report_lines(runs):
                 print(line, flush=True)
 
 
