@@ -15,7 +15,8 @@ The controller (:func:`dribble_velocity`) is a plain feedback law on what the ro
 step sideways to put the ball on the gait's line, and walk at the gait's speed while the ball
 is within reach (:func:`ball_within_reach`), faster when it rolled ahead, slower when it lies
 off the line. Turning, the robot steps sideways as it turns so that it orbits the ball instead
-of leaving it behind: "walking around the ball's side".
+of leaving it behind ("walking around the ball's side"); for a sharp turn the ball's wanted
+place turns with the new direction, so the robot circles the ball rather than crossing it.
 
 Right-footed versions (``foot="right"``) are never written out: the left-footed controller runs
 on mirrored inputs (ball, heading error, gyro, tilt, joint angles) and its joint speeds and
