@@ -70,6 +70,11 @@ class StepParameters:
     #: leg's joints hit their speed cap first, so a flatter profile allows longer steps.
     swing_profile: str = "cosine"
     swing_ramp: float = 0.25
+    #: extra forward lean (rad) and sole shift (m, + = forward) at a full forward step
+    #: (``max_forward``), in proportion below it and none walking backwards: at speed the
+    #: torso must lean further into the walk than standing allows. Blended over each step.
+    speed_lean: float = 0.0
+    speed_foot_forward: float = 0.0
 
     def __post_init__(self) -> None:
         if self.step_cycles < 2:
@@ -133,6 +138,8 @@ class FootTargets:
     #: the phase these targets belong to
     t: int
     left_active: bool
+    #: the torso's forward lean over the soles (rad): the soles are pitched by ``-lean``
+    lean: float = 0.0
 
 
 def _smooth(s: float) -> float:
@@ -181,6 +188,10 @@ class StepGenerator:
         self._command = StepCommand()
         self._lift_off = self._left
         self._landing = self._left
+        # share of a full forward step (0..1) at the start and the end of the step under way,
+        # and where in between this cycle is: speed_lean and speed_foot_forward scale with it
+        self._speed_share = (0.0, 0.0)
+        self._speed_now = 0.0
 
     # ------------------------------------------------------------------ the phase
     @property
@@ -240,6 +251,8 @@ class StepGenerator:
             self._left, self._right = swing, support
         else:
             self._left, self._right = support, swing
+        start, end = self._speed_share
+        self._speed_now = start + (end - start) * s
         lift = p.swing_height * math.sin(math.pi * s)
         # sway: the torso moves towards the support side, i.e. the soles move away from it
         sway = p.sway * math.sin(math.pi * s) * (1.0 if self._left_active else -1.0)
@@ -252,6 +265,8 @@ class StepGenerator:
         side = 1.0 if self._left_active else -1.0
         self._command = self._turn_allowed(command.clipped(p), side)
         c = self._command
+        full = max(0.0, c.forward) / p.max_forward if p.max_forward > 0.0 else 0.0
+        self._speed_share = (self._speed_now, min(1.0, full))
         swing = self._left if self._left_active else self._right
         self._lift_off = swing
         # landing pose in the walk frame at the END of this step. Forward: half the step ahead
@@ -286,18 +301,18 @@ class StepGenerator:
     def _support(self) -> FootPose:
         return self._right if self._left_active else self._left
 
-    def _targets(self, lift: float, sway: float) -> FootTargets:
+    def _targets(self, lift: float, sway: float, speed_share: float | None = None) -> FootTargets:
         p = self.params
+        share = self._speed_now if speed_share is None else speed_share
+        lean = p.lean + p.speed_lean * share
+        forward = p.foot_forward + p.speed_foot_forward * share
         left_z = -p.torso_height + (lift if self._left_active else 0.0)
         right_z = -p.torso_height + (0.0 if self._left_active else lift)
-        left = self._tilted(self._left.x + p.foot_forward, self._left.y + sway, left_z)
-        right = self._tilted(self._right.x + p.foot_forward, self._right.y + sway, right_z)
-        return FootTargets(left, right, self._left.yaw, self._right.yaw, self._t, self._left_active)
-
-    def _tilted(self, x: float, y: float, z: float) -> tuple[float, float, float]:
-        """A point of the walk frame seen from a torso leaning forward by ``lean``."""
-        c, s = math.cos(self.params.lean), math.sin(self.params.lean)
-        return (c * x - s * z, y, s * x + c * z)
+        left = _tilted(self._left.x + forward, self._left.y + sway, left_z, lean)
+        right = _tilted(self._right.x + forward, self._right.y + sway, right_z, lean)
+        return FootTargets(
+            left, right, self._left.yaw, self._right.yaw, self._t, self._left_active, lean
+        )
 
     def stand_targets(self) -> FootTargets:
         """The neutral stance (both soles at their neutral places, no lift, no sway)."""
@@ -305,6 +320,12 @@ class StepGenerator:
         p = self.params
         self._left = FootPose(0.0, p.foot_spread)
         self._right = FootPose(0.0, -p.foot_spread)
-        targets = self._targets(0.0, 0.0)
+        targets = self._targets(0.0, 0.0, speed_share=0.0)
         self._left, self._right = saved
         return replace(targets, t=self._t, left_active=self._left_active)
+
+
+def _tilted(x: float, y: float, z: float, lean: float) -> tuple[float, float, float]:
+    """A point of the walk frame seen from a torso leaning forward by ``lean``."""
+    c, s = math.cos(lean), math.sin(lean)
+    return (c * x - s * z, y, s * x + c * z)

@@ -44,6 +44,7 @@ __all__ = [
     "WalkParameters",
     "WalkSkill",
     "WalkVelocitySkill",
+    "norm_limited",
     "walk_parameters",
 ]
 
@@ -60,6 +61,9 @@ class WalkParameters:
     turn_acceleration_deg: float = 600.0
     #: share of the predicted joint error corrected per cycle (0..1)
     error_gain: float = 0.6
+    #: joint speed cap (rad/s) of the walk on top of the model's own caps: type 2's faster
+    #: ankle pitch (8.8 rad/s) following the swing targets at full speed rocks the robot
+    max_joint_speed: float = math.inf
     #: ankle pitch correction per degree of torso pitch and per deg/s of pitch rate
     ankle_pitch_gain: float = 0.0
     ankle_pitch_rate_gain: float = 0.0
@@ -77,6 +81,10 @@ class WalkParameters:
     #: trips the robot: the turning swing foot catches the support foot); in between it shrinks
     #: linearly
     turn_share_at_full_speed: float = 1.0
+    #: how forward, sideways and turning share the step's limits (:func:`norm_limited`):
+    #: ``inf`` (a box: each axis on its own) lets a fast step also go fully sideways and turn,
+    #: which trips the robot; 2 is an ellipsoid, 1 a diamond.
+    step_norm: float = math.inf
     #: turn correction (deg/s) per degree of heading drift from the commanded turn (gyro)
     heading_hold_gain: float = 0.0
     #: how much of the planned torso motion really happens (measured)
@@ -121,6 +129,22 @@ def walk_parameters(robot_type: int, path: Path = WALK_FILE) -> WalkParameters:
     return _read_parameters(merged, f"{path} (type{robot_type})")
 
 
+def norm_limited(command: StepCommand, step: StepParameters, norm: float) -> StepCommand:
+    """``command`` scaled down (all axes alike, so its direction stays) until the ``norm``-norm
+    of its shares of the step limits (forward or backward, sideways, turn) is at most 1;
+    ``norm = inf`` leaves it as it is (each axis is clipped on its own elsewhere)."""
+    if math.isinf(norm):
+        return command
+    forward_limit = step.max_forward * (1.0 if command.forward >= 0.0 else step.backward_share)
+    limits = (forward_limit, step.max_side, step.max_turn)
+    values = (command.forward, command.left, command.turn)
+    shares = [abs(v) / max(limit, 1e-9) for v, limit in zip(values, limits, strict=True)]
+    size = sum(share**norm for share in shares) ** (1.0 / norm)
+    if size <= 1.0:
+        return command
+    return StepCommand(command.forward / size, command.left / size, command.turn / size)
+
+
 class WalkEngine:
     """The walk's state for one robot: step generator, smoothed velocity, joint predictor."""
 
@@ -130,7 +154,8 @@ class WalkEngine:
         self.ik: LegIK = leg_ik_for(robot_type)
         self.generator = StepGenerator(self.params.step)
         spec = robot_spec(robot_type)
-        self._max_speed = {j.perceptor: j.max_speed for j in spec.joints}
+        cap = self.params.max_joint_speed
+        self._max_speed = {j.perceptor: min(j.max_speed, cap) for j in spec.joints}
         self._has_toes = spec.has_toes
         self.reset()
 
@@ -191,6 +216,7 @@ class WalkEngine:
         x, y, w = self.velocity
         w -= math.radians(self.params.heading_hold_gain * self._heading_drift)
         command = StepCommand(x * duration, y * duration, w * duration).clipped(self.params.step)
+        command = norm_limited(command, self.params.step, self.params.step_norm)
         return self._turn_limited(command)
 
     def _turn_limited(self, command: StepCommand) -> StepCommand:
@@ -245,8 +271,7 @@ class WalkEngine:
         )
 
     def _leg_angles(self, targets: FootTargets, context: SkillContext) -> dict[str, float]:
-        p = self.params
-        pitch = -p.step.lean  # soles flat on the ground under a leaning torso
+        pitch = -targets.lean  # soles flat on the ground under a leaning torso
         left = self.ik.solve_sole("left", targets.left, 0.0, pitch, targets.left_yaw)
         right = self.ik.solve_sole("right", targets.right, 0.0, pitch, targets.right_yaw)
         angles = {**left.angles_deg, **right.angles_deg}
@@ -440,10 +465,8 @@ class WalkSkill(_WalkBase):
         forward = math.cos(h) * dx + math.sin(h) * dy
         left = -math.sin(h) * dx + math.cos(h) * dy
         travel = math.degrees(math.atan2(dy, dx))
-        if heading is None:
-            goal_heading = travel if distance > FACE_TRAVEL_DISTANCE else ph
-        else:
-            goal_heading = travel if distance > 1.5 else heading
+        facing_travel = distance > (FACE_TRAVEL_DISTANCE if heading is None else 1.5)
+        goal_heading = travel if facing_travel else (ph if heading is None else heading)
         heading_error = _wrap_deg(goal_heading - ph)
         final_error = 0.0 if heading is None else _wrap_deg(heading - ph)
         if self._arrived:
@@ -464,9 +487,12 @@ class WalkSkill(_WalkBase):
         # turning first when the target is off to one side: walking and turning hard at once
         # trips the robot; at 45 degrees or more off it turns on the spot
         slow = math.cos(math.radians(min(2.0 * abs(heading_error), 90.0)))
-        if distance > FACE_TRAVEL_DISTANCE:  # far away: no sidestepping, face the way first
+        if distance > FACE_TRAVEL_DISTANCE:  # far away: face the way first
             vx *= slow
-            vy *= slow
+            # facing the way of travel no sidestepping: turning brings the target ahead, and
+            # a fast step that also goes sideways and turns trips the robot (type 2 fell at
+            # 0.8 m/s forward with 0.25 m/s sideways)
+            vy = 0.0 if facing_travel else vy * slow
         vy = max(-max_side, min(max_side, vy))
         vturn = max(-g.max_turn_deg, min(g.max_turn_deg, g.heading_gain * heading_error))
         return vx, vy, vturn

@@ -8,7 +8,7 @@ import math
 import pytest
 
 from behaviors.step_generator import StepCommand, StepGenerator, StepParameters, swing_progress
-from behaviors.walk import WalkEngine, walk_parameters
+from behaviors.walk import WalkEngine, norm_limited, walk_parameters
 from world.nao_model import ROBOT_TYPES
 
 
@@ -105,9 +105,66 @@ def test_mirrored_commands_give_mirrored_targets():
 def test_every_type_has_parameters_and_a_reachable_stance(robot_type):
     engine = WalkEngine(robot_type)
     stance = engine.generator.stand_targets()
-    pitch = -walk_parameters(robot_type).step.lean
+    pitch = -stance.lean
+    assert stance.lean == pytest.approx(walk_parameters(robot_type).step.lean)
     for side, position in (("left", stance.left), ("right", stance.right)):
         assert engine.ik.solve_sole(side, position, 0.0, pitch).exact
+
+
+@pytest.mark.parametrize("ramp", (0.125, 0.25, 0.5))
+def test_trapezoid_swing_starts_and_ends_at_rest_with_a_lower_peak_than_the_cosine(ramp):
+    params = StepParameters(swing_profile="trapezoid", swing_ramp=ramp)
+    cosine = StepParameters()
+    samples = [i / 400 for i in range(401)]
+    progress = [swing_progress(s, params) for s in samples]
+    assert progress[0] == pytest.approx(0.0) and progress[-1] == pytest.approx(1.0)
+    assert all(b >= a for a, b in itertools.pairwise(progress))  # never goes back
+    speeds = [(b - a) * 400 for a, b in itertools.pairwise(progress)]
+    assert speeds[0] < 0.05 and speeds[-1] < 0.05  # lifts off and lands at rest
+    assert max(speeds) == pytest.approx(1.0 / (1.0 - ramp), rel=0.01)
+    cosine_peak = max(
+        (swing_progress(b, cosine) - swing_progress(a, cosine)) * 400
+        for a, b in itertools.pairwise(samples)
+    )
+    if ramp < 0.3:
+        assert max(speeds) < cosine_peak
+
+
+def test_the_swing_profile_is_checked():
+    with pytest.raises(ValueError):
+        StepParameters(swing_profile="square")
+    with pytest.raises(ValueError):
+        StepParameters(swing_profile="trapezoid", swing_ramp=0.0)
+
+
+def test_speed_lean_grows_with_the_forward_step_and_never_standing():
+    """The torso leans further into a fast walk (soles further back and pitched by the lean),
+    blended over the step, none walking backwards, and the stance keeps the standing lean."""
+    params = StepParameters(lean=0.1, speed_lean=0.05, speed_foot_forward=-0.01, max_forward=0.1)
+    generator = StepGenerator(params)
+    leans = [generator.next_targets(StepCommand(0.1)).lean for _ in range(24)]
+    assert leans[0] < leans[7] == pytest.approx(0.15)  # full lean at the first step's end
+    assert all(b >= a - 1e-12 for a, b in itertools.pairwise(leans))
+    assert leans[-1] == pytest.approx(0.15)
+    assert generator.stand_targets().lean == pytest.approx(0.1)
+    backwards = [generator.next_targets(StepCommand(-0.05)).lean for _ in range(16)]
+    assert backwards[-1] == pytest.approx(0.1)
+    plain = StepGenerator(StepParameters(lean=0.1, max_forward=0.1))
+    assert plain.next_targets(StepCommand(0.1)).lean == pytest.approx(0.1)
+
+
+def test_step_norm_keeps_the_direction_and_bounds_the_combined_step():
+    step = StepParameters(max_forward=0.15, max_side=0.05, max_turn=0.2)
+    box = StepCommand(0.15, 0.05, 0.1)
+    assert norm_limited(box, step, math.inf) == box
+    limited = norm_limited(box, step, 2.0)
+    shares = (limited.forward / 0.15, limited.left / 0.05, limited.turn / 0.2)
+    assert math.hypot(*shares) == pytest.approx(1.0)
+    assert limited.left / limited.forward == pytest.approx(box.left / box.forward)
+    small = StepCommand(0.05, 0.01, 0.0)
+    assert norm_limited(small, step, 2.0) == small
+    backwards = norm_limited(StepCommand(-0.15, 0.0, 0.0), step, 2.0)
+    assert backwards.forward == pytest.approx(-0.15 * step.backward_share)
 
 
 # ------------------------------------------------------------------ in the simulator
@@ -189,29 +246,3 @@ def test_walk_to_target_stops_within_10_cm():
         assert math.hypot(x - target[0], y - target[1]) < 0.1
     finally:
         driver.session.close()
-
-
-@pytest.mark.parametrize("ramp", (0.125, 0.25, 0.5))
-def test_trapezoid_swing_starts_and_ends_at_rest_with_a_lower_peak_than_the_cosine(ramp):
-    params = StepParameters(swing_profile="trapezoid", swing_ramp=ramp)
-    cosine = StepParameters()
-    samples = [i / 400 for i in range(401)]
-    progress = [swing_progress(s, params) for s in samples]
-    assert progress[0] == pytest.approx(0.0) and progress[-1] == pytest.approx(1.0)
-    assert all(b >= a for a, b in itertools.pairwise(progress))  # never goes back
-    speeds = [(b - a) * 400 for a, b in itertools.pairwise(progress)]
-    assert speeds[0] < 0.05 and speeds[-1] < 0.05  # lifts off and lands at rest
-    assert max(speeds) == pytest.approx(1.0 / (1.0 - ramp), rel=0.01)
-    cosine_peak = max(
-        (swing_progress(b, cosine) - swing_progress(a, cosine)) * 400
-        for a, b in itertools.pairwise(samples)
-    )
-    if ramp < 0.3:
-        assert max(speeds) < cosine_peak
-
-
-def test_the_swing_profile_is_checked():
-    with pytest.raises(ValueError):
-        StepParameters(swing_profile="square")
-    with pytest.raises(ValueError):
-        StepParameters(swing_profile="trapezoid", swing_ramp=0.0)
