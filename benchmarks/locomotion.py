@@ -9,12 +9,15 @@ ground truth (torso position and heading). Per type it prints:
 * ``walk_side_mps[typeN]``: the same walking left;
 * ``walk_turn_dps[typeN]``: turning on the spot, deg/s;
 * ``falls_60s[typeN]``: falls in 60 s of ``walk`` to random targets (``falls_10s`` over
-  10 s with ``--quick``; a fallen robot is put back on its feet by the trainer and counted);
+  10 s with ``--quick``; a fallen robot is put back on its feet by the trainer and counted),
+  summed over ``--random-seeds`` runs of their own seed each (falls are rare events: one
+  60 s run says little);
 * ``walk_stop_error_m[typeN]``: mean distance from the target where ``walk`` reported
   arrival (ground truth), over the reached targets, and ``walk_stop_error_max_m[typeN]``
   the largest.
 
-Run: ``.venv/bin/python benchmarks/locomotion.py [--quick] [--types 0 1 2 3 4] [--seed 0]``.
+Run: ``.venv/bin/python benchmarks/locomotion.py [--quick] [--types 0 1 2 3 4] [--seed 0]
+[--random-seeds 1] [--skip-velocity]``.
 """
 
 from __future__ import annotations
@@ -174,24 +177,41 @@ def _random_target(rng: np.random.Generator) -> tuple[float, float, float | None
     return float(rng.uniform(-10, -2)), float(rng.uniform(-4, 4)), heading
 
 
+def _print_velocities(robot_type: int, seconds: float, seed: int) -> None:
+    """Forward, sideways and turning figures of one type."""
+    tag = f"[type{robot_type}]"
+    fwd, _, _, fell_f = measure_velocity(robot_type, (1.0, 0.0, 0.0), seconds, seed)
+    _, side, _, fell_s = measure_velocity(robot_type, (0.0, 0.4, 0.0), seconds, seed)
+    _, _, turn, fell_t = measure_velocity(robot_type, (0.0, 0.0, 120.0), seconds, seed)
+    print(f"walk_forward_mps{tag}: {fwd:.3f}{' (fell)' if fell_f else ''}")
+    print(f"walk_side_mps{tag}: {side:.3f}{' (fell)' if fell_s else ''}")
+    print(f"walk_turn_dps{tag}: {turn:.1f}{' (fell)' if fell_t else ''}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="shorter runs (under a minute)")
     parser.add_argument("--types", type=int, nargs="*", default=list(ROBOT_TYPES))
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument(
+        "--random-seeds", type=int, default=1, help="random-target runs per type (own seeds)"
+    )
+    parser.add_argument("--skip-velocity", action="store_true", help="only the random-target runs")
     args = parser.parse_args()
     measure_s = 2.0 if args.quick else 3.0
     random_s = 10.0 if args.quick else 60.0
     for robot_type in args.types:
         tag = f"[type{robot_type}]"
-        fwd, _, _, fell_f = measure_velocity(robot_type, (1.0, 0.0, 0.0), measure_s, args.seed)
-        _, side, _, fell_s = measure_velocity(robot_type, (0.0, 0.4, 0.0), measure_s, args.seed)
-        _, _, turn, fell_t = measure_velocity(robot_type, (0.0, 0.0, 120.0), measure_s, args.seed)
-        falls, errors, reached = random_targets(robot_type, random_s, args.seed + robot_type)
-        print(f"walk_forward_mps{tag}: {fwd:.3f}{' (fell)' if fell_f else ''}")
-        print(f"walk_side_mps{tag}: {side:.3f}{' (fell)' if fell_s else ''}")
-        print(f"walk_turn_dps{tag}: {turn:.1f}{' (fell)' if fell_t else ''}")
-        print(f"falls_{round(random_s)}s{tag}: {falls}")
+        if not args.skip_velocity:
+            _print_velocities(robot_type, measure_s, args.seed)
+        falls, errors, reached = 0, [], 0
+        for k in range(args.random_seeds):
+            seed = args.seed + robot_type + 100 * k
+            run_falls, run_errors, run_reached = random_targets(robot_type, random_s, seed)
+            falls, reached = falls + run_falls, reached + run_reached
+            errors.extend(run_errors)
+        runs = f" ({args.random_seeds} runs)" if args.random_seeds > 1 else ""
+        print(f"falls_{round(random_s)}s{tag}: {falls}{runs}")
         error = float(np.mean(errors)) if errors else float("nan")
         print(f"walk_stop_error_m{tag}: {error:.3f} ({reached} targets reached)")
         print(f"walk_stop_error_max_m{tag}: {max(errors, default=float('nan')):.3f}")
