@@ -362,98 +362,153 @@ class Localizer:
     ) -> tuple[Array, Array, bool]:
         """Iterated EKF update: the pose that best fits the prior and all measurements, its
         covariance, and (with ``check``, starting at the prior) whether every landmark agreed
-        with the prior within the kidnap gate."""
-        info_prior = _inverse3(cov)
-        state = (prior if start is None else start).copy()
-        n = len(field)
-        ranges = np.hypot(seen[:, 0], seen[:, 1])
-        measured = np.column_stack([ranges, np.arctan2(seen[:, 1], seen[:, 0])])
-        range_sigma, bearing_sigma = self._landmark_sigmas(ranges)
-        variances = np.column_stack([range_sigma**2, bearing_sigma**2])
-        weights = [1.0 / variances.reshape(-1)]
-        if matched is not None:
-            points, which, line_ranges = matched
-            cfg = self.config
-            weights.append((cfg.line_sigma_m + cfg.line_sigma_rel * line_ranges) ** -2)
-            normal = self._line_normal[which]
-            offset = np.einsum("mx,mx->m", self._line_start[which], normal)
-        w = np.concatenate(weights)
-        h = np.empty((len(w), 3))
-        r = np.empty(len(w))
+        with the prior within the kidnap gate.
+
+        Each measurement row ``h`` (a 3-vector) with weight ``w`` and residual ``r`` adds
+        ``w h h^T`` to the information matrix and ``w h r`` to the right-hand side. There are a
+        few dozen rows of three columns per image, so the sums are plain floats: numpy's
+        per-call cost would be most of the work."""
+        cov_rows = cov.tolist()
+        prior_rows = _inverse3_rows(cov_rows)
+        px, py, ph = prior.tolist()
+        x, y, heading = (prior if start is None else start).tolist()
+        landmarks = self._landmark_measurements(field, seen)
+        lines = self._line_measurements(matched) if matched is not None else []
         agrees = True
-        info = info_prior
+        info = prior_rows
         for iteration in range(iterations or self.config.iterations):
-            if n:
-                predicted, jac = _range_bearing(state, field)
-                innovation = measured - predicted
-                innovation[:, 1] = (innovation[:, 1] + math.pi) % (2 * math.pi) - math.pi
-                h[: 2 * n] = jac.reshape(-1, 3)
-                r[: 2 * n] = innovation.reshape(-1)
-                if check and iteration == 0:
-                    agrees = self._agrees(innovation, jac, cov, variances)
-            if matched is not None:
-                c, s = math.cos(state[2]), math.sin(state[2])
-                turned = points @ np.array([[c, s], [-s, c]])  # R(heading) p, row-wise
-                h[2 * n :, :2] = normal
-                h[2 * n :, 2] = normal[:, 1] * turned[:, 0] - normal[:, 0] * turned[:, 1]
-                # signed distance of each end point from its field line, wanted: 0
-                r[2 * n :] = offset - np.einsum("mx,mx->m", turned + state[:2], normal)
-            hw = h.T * w
-            info = info_prior + hw @ h
-            delta_prior = prior - state
-            delta_prior[2] = _wrap_rad(delta_prior[2])
-            info_inverse = _inverse3(info)
-            state = state + info_inverse @ (info_prior @ delta_prior + hw @ r)
-            state[2] = _wrap_rad(state[2])
-        return state, _inverse3(info), agrees
+            info = [row[:] for row in prior_rows]
+            dx, dy, dh = px - x, py - y, _wrap_rad(ph - heading)
+            rhs = [row[0] * dx + row[1] * dy + row[2] * dh for row in prior_rows]
+            for fx, fy, measured_range, measured_bearing, range_var, bearing_var in landmarks:
+                ex, ey = fx - x, fy - y
+                r2 = ex * ex + ey * ey
+                distance = math.sqrt(r2)
+                bearing = _wrap_rad(math.atan2(ey, ex) - heading)
+                range_row = (-ex / distance, -ey / distance, 0.0)
+                bearing_row = (ey / r2, -ex / r2, -1.0)
+                range_error = measured_range - distance
+                bearing_error = _wrap_rad(measured_bearing - bearing)
+                if check and iteration == 0 and agrees:
+                    agrees = self._agrees(
+                        range_row, bearing_row, range_error, bearing_error, cov_rows,
+                        range_var, bearing_var,
+                    )  # fmt: skip
+                _accumulate(info, rhs, range_row, 1.0 / range_var, range_error)
+                _accumulate(info, rhs, bearing_row, 1.0 / bearing_var, bearing_error)
+            c, s = math.cos(heading), math.sin(heading)
+            for qx, qy, nx, ny, offset, weight in lines:
+                # the end point turned into the field: R(heading) q
+                tx, ty = c * qx - s * qy, s * qx + c * qy
+                row = (nx, ny, ny * tx - nx * ty)
+                # signed distance of the end point from its field line, wanted: 0
+                _accumulate(info, rhs, row, weight, offset - ((tx + x) * nx + (ty + y) * ny))
+            step = _inverse3_rows(info)
+            x += step[0][0] * rhs[0] + step[0][1] * rhs[1] + step[0][2] * rhs[2]
+            y += step[1][0] * rhs[0] + step[1][1] * rhs[1] + step[1][2] * rhs[2]
+            heading = _wrap_rad(
+                heading + step[2][0] * rhs[0] + step[2][1] * rhs[1] + step[2][2] * rhs[2]
+            )
+        return np.array([x, y, heading]), np.array(_inverse3_rows(info)), agrees
 
-    def _agrees(self, innovation: Array, jac: Array, cov: Array, variances: Array) -> bool:
-        """Whether every landmark's innovation fits S = H P H^T + R within the kidnap gate."""
-        s = jac @ cov @ jac.transpose(0, 2, 1)
-        a = s[:, 0, 0] + variances[:, 0]
-        d = s[:, 1, 1] + variances[:, 1]
-        b, c = s[:, 0, 1], s[:, 1, 0]
-        i, j = innovation[:, 0], innovation[:, 1]
-        # i^T S^-1 i with the 2x2 inverse written out (one landmark per row)
+    def _landmark_measurements(self, field: Array, seen: Array) -> list[tuple[float, ...]]:
+        """Per landmark: field x, y, measured range, bearing, and their variances."""
+        cfg = self.config
+        bearing_base = math.radians(cfg.bearing_sigma_deg)
+        out = []
+        for (fx, fy), (ex, ey) in zip(field.tolist(), seen.tolist(), strict=True):
+            distance = math.hypot(ex, ey)
+            range_sigma = cfg.range_sigma_m + cfg.range_sigma_rel * distance
+            bearing_sigma = bearing_base + cfg.bearing_sigma_m / max(distance, 0.1)
+            out.append((fx, fy, distance, math.atan2(ey, ex), range_sigma**2, bearing_sigma**2))
+        return out
+
+    def _line_measurements(self, matched: tuple) -> list[tuple[float, ...]]:
+        """Per matched line end point: its ego x, y, the field line's normal, the normal's
+        offset of the line (start . normal), and the weight."""
+        points, which, line_ranges = matched
+        cfg = self.config
+        normals = self._line_normal[which]
+        offsets = np.einsum("mx,mx->m", self._line_start[which], normals)
+        weights = (cfg.line_sigma_m + cfg.line_sigma_rel * line_ranges) ** -2
+        return [
+            (qx, qy, nx, ny, offset, weight)
+            for (qx, qy), (nx, ny), offset, weight in zip(
+                points.tolist(), normals.tolist(), offsets.tolist(), weights.tolist(), strict=True
+            )
+        ]
+
+    def _agrees(
+        self,
+        range_row: tuple[float, float, float],
+        bearing_row: tuple[float, float, float],
+        range_error: float,
+        bearing_error: float,
+        cov: list[list[float]],
+        range_var: float,
+        bearing_var: float,
+    ) -> bool:
+        """Whether a landmark's innovation fits S = H P H^T + R within the kidnap gate."""
+        (c00, c01, c02), (c10, c11, c12), (c20, c21, c22) = cov
+        r0, r1, r2 = range_row
+        b0, b1, b2 = bearing_row
+        # P h for both rows
+        pr0, pr1, pr2 = (
+            c00 * r0 + c01 * r1 + c02 * r2,
+            c10 * r0 + c11 * r1 + c12 * r2,
+            c20 * r0 + c21 * r1 + c22 * r2,
+        )
+        pb0, pb1, pb2 = (
+            c00 * b0 + c01 * b1 + c02 * b2,
+            c10 * b0 + c11 * b1 + c12 * b2,
+            c20 * b0 + c21 * b1 + c22 * b2,
+        )
+        a = r0 * pr0 + r1 * pr1 + r2 * pr2 + range_var
+        b = r0 * pb0 + r1 * pb1 + r2 * pb2
+        c = b0 * pr0 + b1 * pr1 + b2 * pr2
+        d = b0 * pb0 + b1 * pb1 + b2 * pb2 + bearing_var
+        i, j = range_error, bearing_error
+        # i^T S^-1 i with the 2x2 inverse written out
         chi2 = (d * i * i - (b + c) * i * j + a * j * j) / (a * d - b * c)
-        return bool(np.all(chi2 < self.config.kidnap_chi2))
+        return chi2 < self.config.kidnap_chi2
 
 
-def _inverse3(m: Array) -> Array:
-    """The inverse of a 3x3 matrix by its adjugate: for the filter's small, well-conditioned
-    information and covariance matrices this is several times cheaper than ``np.linalg.inv``
-    (whose fixed cost dominates at this size) and agrees with it to rounding."""
-    (a, b, c), (d, e, f), (g, h, i) = m.tolist()
+def _accumulate(
+    info: list[list[float]], rhs: list[float], row: tuple[float, float, float], w: float, r: float
+) -> None:
+    """Add one weighted measurement row: info += w h h^T, rhs += w h r."""
+    h0, h1, h2 = row
+    w0, w1, w2 = w * h0, w * h1, w * h2
+    i0, i1, i2 = info
+    i0[0] += w0 * h0
+    i0[1] += w0 * h1
+    i0[2] += w0 * h2
+    i1[0] += w1 * h0
+    i1[1] += w1 * h1
+    i1[2] += w1 * h2
+    i2[0] += w2 * h0
+    i2[1] += w2 * h1
+    i2[2] += w2 * h2
+    rhs[0] += w0 * r
+    rhs[1] += w1 * r
+    rhs[2] += w2 * r
+
+
+def _inverse3_rows(m: list[list[float]]) -> list[list[float]]:
+    """The inverse of a 3x3 matrix (rows) by its adjugate: for the filter's small,
+    well-conditioned information and covariance matrices this is several times cheaper than
+    ``np.linalg.inv`` (whose fixed cost dominates at this size) and agrees with it to rounding."""
+    (a, b, c), (d, e, f), (g, h, i) = m
     co_a, co_b, co_c = e * i - f * h, f * g - d * i, d * h - e * g
     det = a * co_a + b * co_b + c * co_c
     if det == 0.0:
         raise np.linalg.LinAlgError("singular 3x3 matrix")
     k = 1.0 / det
-    return np.array(
-        [
-            [co_a * k, (c * h - b * i) * k, (b * f - c * e) * k],
-            [co_b * k, (a * i - c * g) * k, (c * d - a * f) * k],
-            [co_c * k, (b * g - a * h) * k, (a * e - b * d) * k],
-        ]
-    )
-
-
-def _range_bearing(state: Array, field: Array) -> tuple[Array, Array]:
-    """Predicted (range, bearing) of field points from ``state`` (n, 2) and their Jacobians
-    with respect to (x, y, heading) (n, 2, 3)."""
-    dx = field[:, 0] - state[0]
-    dy = field[:, 1] - state[1]
-    r2 = dx * dx + dy * dy
-    r = np.sqrt(r2)
-    bearing = np.arctan2(dy, dx) - state[2]
-    bearing = (bearing + math.pi) % (2 * math.pi) - math.pi
-    jac = np.zeros((len(dx), 2, 3))
-    jac[:, 0, 0] = -dx / r
-    jac[:, 0, 1] = -dy / r
-    jac[:, 1, 0] = dy / r2
-    jac[:, 1, 1] = -dx / r2
-    jac[:, 1, 2] = -1.0
-    return np.stack([r, bearing], axis=1), jac
+    return [
+        [co_a * k, (c * h - b * i) * k, (b * f - c * e) * k],
+        [co_b * k, (a * i - c * g) * k, (c * d - a * f) * k],
+        [co_c * k, (b * g - a * h) * k, (a * e - b * d) * k],
+    ]
 
 
 def _fit_points(field: Array, seen: Array, weights: Array) -> Array:
