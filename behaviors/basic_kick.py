@@ -44,15 +44,16 @@ HEAD_PITCH_DEG = -45.0
 #: expects it, along and across the foot, and facing the target within ``READY_HEADING_DEG``.
 #: Why this loose: the walk cannot make steps much shorter than a few centimetres (slower
 #: commands tread on the spot), so finer alignment by walking was measured to oscillate.
-READY_ALONG_M = 0.035
-READY_ACROSS_M = 0.04
+READY_ALONG_M = 0.04
+READY_ACROSS_M = 0.025
 READY_HEADING_DEG = 12.0
 #: When the robot stopped too far off, it walks back this far (m) from the kicking spot and
 #: approaches again (the walk counts a target within 4 cm as reached and would not move).
 BACK_OFF_M = 0.15
 #: How far (m) beyond the kicking spot the walk is sent (it stops up to 4 cm short of its
-#: target, ``behaviors.walk.ARRIVE_DISTANCE``): measured 3-5 cm short without it.
-WALK_OVERSHOOT_M = 0.03
+#: target, ``behaviors.walk.ARRIVE_DISTANCE``): measured 3-5 cm short without it, and with 3 cm
+#: its last steps pushed the ball away at times.
+WALK_OVERSHOOT_M = 0.015
 #: Cycles in the stand pose between the walk's stop and the kick: the walk stands with other
 #: angles, and the kick's weight shift from those tipped the robot over.
 SETTLE_CYCLES = 50

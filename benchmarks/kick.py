@@ -273,6 +273,7 @@ def stand_kicks(seeds: int, robot_type: int, strengths: list[float]) -> None:
         results += mine
         print(f"kick_distance_m[strength={strength:g}]: "
               f"{statistics.median(r.distance_m for r in mine):.2f}")  # fmt: skip
+        print(f"kick_falls[strength={strength:g}]: {sum(r.fell for r in mine)} of {len(mine)}")
     moved = [r for r in results if r.time_to_contact_s is not None]
     errors = [abs(r.direction_deg) for r in moved]
     times = [r.time_to_contact_s for r in moved]

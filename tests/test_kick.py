@@ -1,9 +1,8 @@
 """The kick: the packaged motion, strength scaling, mirroring, and kicks in the simulator.
 
-The issue asks for at least 3 m at full strength; the motion reaches about 2.0-2.5 m on type 0
-today (``benchmarks/kick.py``), so that assertion is a strict xfail that turns red the day it
-passes. The trials that pass assert what the kick does achieve: the robot stays up, the ball
-leaves forwards off the kicking foot's side.
+The issue asks for at least 3 m at full strength; the motion reaches about 3.4-4.3 m on type 0
+(``benchmarks/kick.py``). The trials also assert that the robot stays up and the ball leaves
+forwards off the kicking foot's side.
 """
 
 from __future__ import annotations
@@ -191,7 +190,6 @@ def test_full_kick_moves_the_ball_forwards_off_the_kicking_foot(kick, request):
     assert (result.ball_side_m < -0.03) == (result.foot == "right")
 
 
-@pytest.mark.xfail(strict=True, reason="full-strength kick reaches ~2.0-2.5 m, issue asks 3 m")
 @pytest.mark.parametrize("kick", ["left_kick", "right_kick"])
 def test_full_kick_reaches_three_metres(kick, request):
     assert request.getfixturevalue(kick).distance_m >= 3.0
