@@ -38,7 +38,7 @@ from world.field_geometry import BALL_RADIUS
 from world.kinematics import body_transforms
 from world.nao_model import robot_spec
 
-#: Neck pitch (deg, negative = down) while approaching and aligning.
+#: Neck pitch (deg, negative = down) while approaching and settling.
 HEAD_PITCH_DEG = -45.0
 #: The kick starts once the robot stands still with the ball this close (m) to where the kick
 #: expects it, along and across the foot, and facing the target within ``READY_HEADING_DEG``.
@@ -161,7 +161,7 @@ def _distance_to_segment(
 
 
 class BasicKickSkill(Skill):
-    """``execute("basic_kick", target_x, target_y, distance)``: walk, align, kick towards the
+    """``execute("basic_kick", target_x, target_y, distance)``: walk, line up, kick towards the
     team-frame point; ``distance`` in metres or ``"long"``. Finished when the kick motion has
     ended (the robot stands again)."""
 
