@@ -253,7 +253,10 @@ def dump_entries(entries: Mapping[str, Any]) -> str:
     """The get-up file's layout: one flow-style line per frame, a blank line between entries."""
     blocks = []
     for name, entry in entries.items():
-        lines = [f"{name}:", f"  description: {entry['description']}", "  frames:"]
+        description = yaml.safe_dump(
+            {"description": entry["description"]}, default_flow_style=False, width=10_000
+        ).strip()  # quoted where the text needs it (a ": " inside, for one)
+        lines = [f"{name}:", f"  {description}", "  frames:"]
         for frame in entry["frames"]:
             text = yaml.safe_dump(frame, default_flow_style=True, sort_keys=False, width=10_000)
             lines.append(f"    - {text.strip()}")

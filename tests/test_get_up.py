@@ -86,6 +86,8 @@ def test_the_search_writes_the_get_up_file_back_unchanged():
     """What the search writes (one flow-style line per frame) reads back as the same data."""
     entries = raw_entries()
     assert yaml.safe_load(dump_entries(entries)) == entries
+    entries["get_up_back"]["description"] = "type 4: knees 'straight' (lj4 +1) # search"
+    assert yaml.safe_load(dump_entries(entries)) == entries
 
 
 def test_predictive_speed_subtracts_the_command_still_in_flight():
