@@ -232,6 +232,19 @@ def test_wrong_argument_type_names_the_parameter(manager):
     assert manager.execute("test_typed", 2.0, "x") is True
 
 
+def test_accepted_argument_types_are_remembered_but_other_calls_still_checked(manager):
+    """The check is cached per tuple of argument types; a new combination is checked again,
+    and values are still validated on every call."""
+    assert manager.execute("test_typed", 2.0, "x") is True
+    assert manager.execute("test_typed", 3.0, "y") is True
+    with pytest.raises(TypeError, match="'label'"):
+        manager.execute("test_typed", 1.0, 3)
+    with pytest.raises(TypeError, match="'distance'"):
+        manager.execute("test_typed", "far", "x")
+    with pytest.raises(ValueError, match="distance must be >= 0"):
+        manager.execute("test_typed", -1.0, "x")
+
+
 def test_bad_argument_value_is_a_value_error_with_the_signature(manager):
     with pytest.raises(ValueError, match=r"test_typed\(distance.*distance must be >= 0"):
         manager.execute("test_typed", -1.0)
