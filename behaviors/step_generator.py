@@ -64,10 +64,12 @@ class StepParameters:
     max_turn: float = 0.4
     #: how far the backward steps may go, as a share of max_forward
     backward_share: float = 0.6
-    #: the swing foot's forward/sideways/turn profile over the step: "cosine" (raised cosine,
-    #: peak speed pi/2 times the mean) or "trapezoid" (constant speed between two ramps of
-    #: ``swing_ramp`` of the step each, peak 1 / (1 - swing_ramp) times the mean). The swing
-    #: leg's joints hit their speed cap first, so a flatter profile allows longer steps.
+    #: the swing foot's forward profile over the step: "cosine" (raised cosine, peak speed
+    #: pi/2 times the mean) or "trapezoid" (constant speed between two ramps of ``swing_ramp``
+    #: of the step each, peak 1 / (1 - swing_ramp) times the mean). The swing leg's joints hit
+    #: their speed cap first, so a flatter profile allows longer steps. Sideways and turning
+    #: keep the cosine: short steps, and a foot turned at full speed tipped robots turning on
+    #: the spot.
     swing_profile: str = "cosine"
     swing_ramp: float = 0.25
     #: extra forward lean (rad) and sole shift (m, + = forward) at a full forward step
@@ -242,10 +244,11 @@ class StepGenerator:
             -c.forward * remaining, -c.left * remaining, -c.turn * remaining
         )
         k = swing_progress(s, p)
+        k_side = _smooth(s)  # sideways and turning keep the cosine (see swing_profile)
         swing = FootPose(
             self._lift_off.x + (landing.x - self._lift_off.x) * k,
-            self._lift_off.y + (landing.y - self._lift_off.y) * k,
-            self._lift_off.yaw + (landing.yaw - self._lift_off.yaw) * k,
+            self._lift_off.y + (landing.y - self._lift_off.y) * k_side,
+            self._lift_off.yaw + (landing.yaw - self._lift_off.yaw) * k_side,
         )
         if self._left_active:
             self._left, self._right = swing, support
