@@ -4,9 +4,8 @@ The back get-up (predictive tracking, tuned per type for types 1-4) and the fron
 about half of the robots back on their feet within 4 s (``benchmarks/get_up.py`` default run:
 47 of 100; lying on the back 56 %, on the front 1 of 8, on a side 2 of 13). The trial test
 below asks for both sides and is a strict xfail so that it turns red the day they do and the
-marker must go. The search that tunes the
-sequences (``learning/get_up_search.py``) is checked here for what it writes into the packaged
-file.
+marker must go. The search that tunes the sequences (``learning/get_up_search.py``) is checked
+here for what it writes into the packaged file.
 """
 
 from __future__ import annotations
