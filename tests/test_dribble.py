@@ -335,3 +335,19 @@ def test_episode_start_is_reproducible_and_stops_at_the_chosen_phase():
     assert _episode_end(4, (6, True)) == first
     cycles, _, _ = _episode_end(4, (2, False))
     assert 25 <= cycles < 25 + 16
+
+
+def test_type4_dribble_keeps_the_ball_rolling():
+    """Type 4 with its toes curled up (the plain walk's 70 deg) pushed the ball along at its
+    own pace and stalled against it (0.3 m in 3 s); with flat toes a toe kicks it ahead (about
+    1.2 m in 3 s)."""
+    assert dribble_walk_parameters("dfdl", 4).toe_deg == pytest.approx(0.0)
+    session, agent = start_dribble_episode(4, 0.0, seed=0)
+    try:
+        start = session.ball.position()
+        for _ in range(150):
+            agent.run("dribble", "dfdl", 0.0, "left")
+        assert not agent.robot.has_fallen()
+        assert session.ball.position()[0] - start[0] > 0.7
+    finally:
+        session.close()
