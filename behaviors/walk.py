@@ -3,7 +3,8 @@
 The engine (:class:`WalkEngine`) turns a velocity into joint speeds every cycle:
 
 1. the commanded velocity is smoothed (bounded acceleration), then scaled to one step's torso
-   motion (:class:`~behaviors.step_generator.StepCommand`);
+   motion (:class:`~behaviors.step_generator.StepCommand`) and kept inside the step limits
+   (each axis, then all together: :func:`norm_limited`);
 2. the :class:`~behaviors.step_generator.StepGenerator` gives both soles' targets for the
    cycle the command will act in, with the IMU's corrections added (below);
 3. :class:`~behaviors.ik.LegIK` turns them into leg angles;
