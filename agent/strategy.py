@@ -100,12 +100,16 @@ class Strategy:
         self.config = config or StrategyConfig()
         self._beamed_in_mode: str | None = None
         self._dribbling = False
+        self._getting_up = False
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``) and any beam."""
         beam = self._beam(world)
-        if world.robot.is_fallen and "get_up" in behavior.skill_names:
-            behavior.execute("get_up")
+        if "get_up" in behavior.skill_names and (world.robot.is_fallen or self._getting_up):
+            # once started, the get-up runs until it reports the robot standing: halfway up
+            # (sitting, torso 50 deg from vertical) the robot no longer counts as fallen, and
+            # walking off from there drops it again
+            self._getting_up = not behavior.execute("get_up")
         elif world.play_mode in BEAM_MODES or world.play_mode == "GameOver":
             behavior.execute("pose", "stand")
         elif self.is_active(world) and not opponents_restart(world.play_mode, world.side):

@@ -79,3 +79,28 @@ def test_only_a_stand_when_walking_does_not_exist():
     behavior = RecordingBehavior()
     Strategy().decide(world(ball=(0.0, 0.0), pose=(-1.0, 0.0, 0.0)), behavior)
     assert behavior.calls[-1] == ("pose", "stand")
+
+
+def test_a_started_get_up_runs_until_it_reports_standing():
+    class GetUpBehavior(RecordingBehavior):
+        def __init__(self) -> None:
+            super().__init__("walk", "get_up")
+            self.get_up_cycles = 0
+
+        def execute(self, name: str, *args: object) -> bool:
+            super().execute(name, *args)
+            if name == "get_up":
+                self.get_up_cycles += 1
+                return self.get_up_cycles >= 3
+            return False
+
+    strategy, behavior = Strategy(), GetUpBehavior()
+    lying = world(ball=(0.0, 0.0), pose=(-1.0, 0.0, 0.0))
+    lying.robot.is_fallen = True
+    strategy.decide(lying, behavior)
+    sitting = world(ball=(0.0, 0.0), pose=(-1.0, 0.0, 0.0))  # halfway up: no longer "fallen"
+    strategy.decide(sitting, behavior)
+    strategy.decide(sitting, behavior)
+    assert [call[0] for call in behavior.calls] == ["get_up"] * 3
+    strategy.decide(sitting, behavior)
+    assert behavior.calls[-1][0] == "walk"
