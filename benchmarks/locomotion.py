@@ -14,10 +14,14 @@ ground truth (torso position and heading). Per type it prints:
   60 s run says little);
 * ``walk_stop_error_m[typeN]``: mean distance from the target where ``walk`` reported
   arrival (ground truth), over the reached targets, and ``walk_stop_error_max_m[typeN]``
-  the largest.
+  the largest;
+* the dribbles (``benchmarks/dribble.py``, from the kick-in-motion start: standing 0.3 m behind
+  the ball at the centre): ``dfdl_mps[typeN]``, ``lfdl_mps[typeN]``, ball losses, falls,
+  holding fouls and the ball-robot distance per phase, over 10 m (3 m with ``--quick``) on
+  three seeds (one with ``--quick``).
 
 Run: ``.venv/bin/python benchmarks/locomotion.py [--quick] [--types 0 1 2 3 4] [--seed 0]
-[--random-seeds 1] [--skip-velocity]``.
+[--random-seeds 1] [--skip-velocity] [--skip-dribble]``.
 """
 
 from __future__ import annotations
@@ -197,6 +201,7 @@ def main() -> None:
         "--random-seeds", type=int, default=1, help="random-target runs per type (own seeds)"
     )
     parser.add_argument("--skip-velocity", action="store_true", help="only the random-target runs")
+    parser.add_argument("--skip-dribble", action="store_true", help="no DFDL/LFDL runs")
     args = parser.parse_args()
     measure_s = 2.0 if args.quick else 3.0
     random_s = 10.0 if args.quick else 60.0
@@ -216,6 +221,20 @@ def main() -> None:
         print(f"walk_stop_error_m{tag}: {error:.3f} ({reached} targets reached)")
         print(f"walk_stop_error_max_m{tag}: {max(errors, default=float('nan')):.3f}")
         sys.stdout.flush()
+        if not args.skip_dribble:
+            _print_dribbles(robot_type, args.quick, args.seed)
+
+
+def _print_dribbles(robot_type: int, quick: bool, seed: int) -> None:
+    """DFDL and LFDL figures of ``benchmarks/dribble.py`` for one robot type."""
+    from benchmarks.dribble import report_lines, run_dribble
+
+    distance = 3.0 if quick else 10.0
+    seeds = [seed] if quick else [seed, seed + 1, seed + 2]
+    for kind in ("dfdl", "lfdl"):
+        runs = [run_dribble(kind, robot_type, distance, seed=s) for s in seeds]
+        for line in report_lines(runs):
+            print(line, flush=True)
 
 
 if __name__ == "__main__":
