@@ -49,8 +49,10 @@ def _default_formation() -> dict[int, tuple[float, float]]:
 class AttackConfig:
     """How the active player brings the ball to the opponent goal (team frame, metres)."""
 
-    #: shoot with ``basic_kick`` once the ball is this close to the goal centre
+    #: shoot with ``basic_kick`` once the ball is this close to the goal centre ...
     kick_range_m: float = 7.0
+    #: ... but closer than this, walk it in with the dribble (surer than a kick that falls)
+    dribble_in_m: float = 2.5
     #: the approach point lies this far behind the ball on the line goal -> ball
     behind_ball_m: float = 0.3
     #: start dribbling within this distance of the approach point ...
@@ -156,7 +158,9 @@ class Strategy:
         bx, by = world.ball.position
         goal_x, goal_y = HALF_LENGTH, 0.0
         to_goal = math.atan2(goal_y - by, goal_x - bx)
-        if "basic_kick" in skills and math.dist((bx, by), (goal_x, goal_y)) < attack.kick_range_m:
+        to_goal_m = math.dist((bx, by), (goal_x, goal_y))
+        walk_it_in = "dribble" in skills and to_goal_m < attack.dribble_in_m
+        if "basic_kick" in skills and to_goal_m < attack.kick_range_m and not walk_it_in:
             self._dribbling = False
             behavior.execute("basic_kick", goal_x, goal_y, "long")
             return

@@ -67,6 +67,14 @@ def test_without_a_dribble_skill_it_walks_and_in_range_it_shoots():
     assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
 
 
+def test_close_to_the_goal_it_walks_the_ball_in_rather_than_kicking():
+    behavior = RecordingBehavior("walk", "dribble", "basic_kick")
+    Strategy().decide(world(ball=(13.0, 0.5), pose=(12.7, 0.5, -5.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "dfdl")
+    Strategy().decide(world(ball=(10.0, 0.5), pose=(9.7, 0.5, 0.0)), behavior)
+    assert behavior.calls[-1][0] == "basic_kick"
+
+
 def test_a_player_with_a_closer_teammate_holds_its_formation_place():
     mate = SimpleNamespace(unum=10, position=(0.5, 0.0))
     behavior = RecordingBehavior("walk", "dribble", "basic_kick")
