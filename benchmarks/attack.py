@@ -7,7 +7,7 @@ agent sees only its perceptions and acts only through its effectors, exactly as 
 same bytes); nothing helps it along. Per trial: scored or not, game seconds from kick-off to the
 goal, falls.
 
-Run: ``.venv/bin/python benchmarks/attack.py [--trials 5] [--seconds 60] [--type 0] [--seed 0]``;
+Run: ``.venv/bin/python benchmarks/attack.py [--trials 5] [--seconds 120] [--type 0] [--seed 0]``;
 prints ``attack_goals``, ``attack_goal_rate``, ``attack_time_to_goal_s_median`` and
 ``attack_falls``.
 """
@@ -67,7 +67,7 @@ def run_attack(robot_type: int, seed: int, seconds: float, unum: int = 10) -> At
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--trials", type=int, default=5)
-    parser.add_argument("--seconds", type=float, default=60.0, help="game seconds per trial")
+    parser.add_argument("--seconds", type=float, default=120.0, help="game seconds per trial")
     parser.add_argument("--type", type=int, default=0, help="robot type 0-4")
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
