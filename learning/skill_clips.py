@@ -38,7 +38,9 @@ class Clip:
     seconds: float
     description: str
     camera_distance: float = 1.6
-    camera_yaw_deg: float = -50.0
+    #: seen from ahead and to the left of a robot walking along +x: robot and ball both show
+    camera_yaw_deg: float = 40.0
+    camera_pitch_deg: float = -30.0
 
 
 def _place_ball(agent: LocalAgent, forward: float, left: float = 0.0) -> None:
@@ -140,7 +142,7 @@ def render_clip(
                         target=(x, y, 0.2),
                         distance=clip.camera_distance,
                         yaw_deg=clip.camera_yaw_deg,
-                        pitch_deg=-20.0,
+                        pitch_deg=clip.camera_pitch_deg,
                     )
                 )
         return save_gif(frames, path, fps=50.0 / every)
