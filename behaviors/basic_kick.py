@@ -93,6 +93,8 @@ SHUFFLE_LOWER_S = 0.12
 MAX_SHUFFLES = 3
 #: Cycles in the stand between a shuffle's end and the next measurement.
 SHUFFLE_SETTLE_CYCLES = 15
+#: Cycles in the stand with the head level between the decision to kick and the kick.
+HEAD_UP_CYCLES = 15
 
 
 @dataclass(frozen=True)
@@ -223,6 +225,7 @@ class BasicKickSkill(Skill):
         self._shuffles = 0
         self._seen: list[tuple[float, float]] = []
         self._seen_time: float | None = None
+        self._head_up = 0
 
     def validate(self, target_x: float, target_y: float, distance: float | str = LONG) -> None:
         if not (math.isfinite(target_x) and math.isfinite(target_y)):
@@ -238,6 +241,11 @@ class BasicKickSkill(Skill):
     ) -> bool:
         if self.phase == "kick":
             assert self.foot is not None
+            if self._head_up < HEAD_UP_CYCLES:
+                # head level before the kick: it was tuned so (a head pitched down fell more)
+                self._head_up += 1
+                context.manager.execute_sub_behavior("pose", "stand")
+                return False
             return context.manager.execute_sub_behavior("kick", self.foot, self._strength)
         world = context.world
         if world.pose is None or world.ball.position is None:
