@@ -5,8 +5,10 @@ fallen one it waits until the body has come to rest (a sequence started while st
 starts from the wrong posture), reads which side faces the ground from the tilt estimate of
 :class:`~world.robot_state.RobotState`, rolls from a side onto the back first, plays the
 matching keyframe sequence and finishes once the robot stands again: torso upright and the feet
-carrying the weight. A sequence that ends with the robot still down is tried again from the new
-posture (the caller decides how long to keep trying).
+carrying the weight, checked from the start of the last frame's hold (the hold only keeps the
+pose). A sequence that ends with the robot still down is tried again from the new posture (the
+caller decides how long to keep trying); a back get-up whose torso lies again after the sit-up
+is abandoned at once, so that the retry fits into the 4 s a robot has to be back up.
 
 The get-up sequences use predictive tracking (``track: predictive`` in
 ``behaviors/data/get_up.yaml``, see :mod:`behaviors.keyframes`): a whole-body motion that lags
@@ -38,6 +40,12 @@ SETTLED_CYCLES = 3
 MAX_SETTLE_S = 1.0
 #: The sequence that turns a robot lying on its left side onto its back (mirrored for the right).
 ROLL_FROM_LEFT = "roll_left_to_back"
+#: A back get-up has sat up by the end of its first SAT_UP_FRAMES frames; from then on a torso
+#: more than ABORT_TILT_DEG from vertical means it fell back (measured, type 0 and 1: torso
+#: within 35 deg of vertical after the sit-up when the attempt succeeds, 65-90 deg when it
+#: fails). The attempt is abandoned at once so that a retry fits into the seconds left.
+SAT_UP_FRAMES = 2
+ABORT_TILT_DEG = 60.0
 
 
 def feet_load(state: RobotState) -> float:
@@ -68,6 +76,8 @@ class _Attempt:
 
     player: KeyframePlayer | None = None
     rolling: bool = False
+    #: seconds into the sequence from which a fallen torso ends the attempt (None: never)
+    abort_after_s: float | None = None
     settled_cycles: int = 0
     waited_cycles: int = 0
 
@@ -131,16 +141,46 @@ class GetUpSkill(Skill):
             self._attempt = _Attempt(KeyframePlayer(sequence, state.robot_type), rolling=True)
         else:
             sequence = sequence_for(f"get_up_{side}", state.robot_type, self.sequences)
-            self._attempt = _Attempt(KeyframePlayer(sequence, state.robot_type))
+            abort_after = None
+            if side == "back":
+                abort_after = sum(frame.total for frame in sequence.frames[:SAT_UP_FRAMES])
+            self._attempt = _Attempt(
+                KeyframePlayer(sequence, state.robot_type), abort_after_s=abort_after
+            )
 
     def _play(self, context: SkillContext, state: RobotState) -> bool:
         attempt = self._attempt
-        assert attempt.player is not None
-        if not attempt.player.step(context.commands, state.joints_deg):
+        player = attempt.player
+        assert player is not None
+        if self._fell_back(state):
+            self._attempt = _Attempt()  # lying again: settle briefly and start over
+            self._hold_still(context, state)
+            return False
+        finished = player.step(context.commands, state.joints_deg)
+        if not attempt.rolling and self._in_final_hold(player) and robot_stands(state):
+            self._attempt = _Attempt()  # up: the rest of the last hold only keeps the pose
+            return True
+        if not finished:
             return False
         # the sequence has sent its last targets: standing, or lying again (retry)
         self._attempt = _Attempt()
         return robot_stands(state) and not attempt.rolling
+
+    def _fell_back(self, state: RobotState) -> bool:
+        """A back get-up past its sit-up with the torso lying again: the attempt failed."""
+        attempt = self._attempt
+        assert attempt.player is not None
+        return (
+            attempt.abort_after_s is not None
+            and attempt.player.elapsed >= attempt.abort_after_s
+            and state.tilt_deg > ABORT_TILT_DEG
+        )
+
+    @staticmethod
+    def _in_final_hold(player: KeyframePlayer) -> bool:
+        """The last frame has reached its targets; what is left of the sequence is its hold."""
+        last = player.sequence.frames[-1]
+        return player.elapsed >= player.sequence.duration - last.hold
 
     def _hold_stand(self, context: SkillContext) -> None:
         context.commands.set_targets(
