@@ -13,10 +13,15 @@ Phases:
    nearer, chosen anew until the robot is close to the ball.
 2. ``settle``: stand still (``walk_velocity`` 0, then the stand pose), then measure where the
    ball lies against where the kick expects it (``ball_gap_m``, ``ball_side_m`` of the kick,
-   relative to the kicking foot in the stand pose) in the robot's own frame: close enough,
-   kick; else ``back_off`` (walk to a spot behind) and approach again.
-3. ``kick``: the ``kick`` skill with the strength that the kick's calibration table gives for
-   the distance.
+   relative to the kicking foot in the stand pose) from the mean of the ball's torso-relative
+   sights of the last standing cycles: within ``FINE_*`` (about 1 cm), kick; within
+   ``SHUFFLE_REACH_M``, ``shuffle``; else ``back_off`` (walk to a spot behind) and approach
+   again.
+3. ``shuffle``: :class:`FootShuffle`, small IK-driven steps in place that move the robot by the
+   measured error and leave the feet squared in the stand pose; then settle again (at most
+   ``MAX_SHUFFLES`` times, after which a coarse ``READY_*`` alignment kicks anyway).
+4. ``kick``: the head level for ``HEAD_UP_CYCLES``, then the ``kick`` skill with the strength
+   that the kick's calibration table gives for the distance.
 
 Once the kick has started it plays to its end. The head
 looks down while approaching: a ball at the toes lies about 65 deg below the horizon, outside a

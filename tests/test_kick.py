@@ -14,7 +14,13 @@ from types import SimpleNamespace
 
 import pytest
 
-from behaviors.basic_kick import BasicKickSkill, detour_point, expected_ball_ego, kick_spot
+from behaviors.basic_kick import (
+    BasicKickSkill,
+    detour_point,
+    expected_ball_ego,
+    kick_spot,
+    shuffle_stages,
+)
 from behaviors.joint_control import JointCommands
 from behaviors.kick import KICK_LEFT, KickMotion, KickSkill, default_kicks, kick_motion, parse_kicks
 from behaviors.mirror import MIRROR_TABLE
@@ -137,6 +143,22 @@ def test_the_ball_is_expected_mirror_symmetrically_in_front_of_either_foot():
     assert left[0] == pytest.approx(right[0], abs=1e-3)
     assert left[1] == pytest.approx(-right[1], abs=1e-3)
     assert 0.1 < left[0] < 0.3 and 0.02 < left[1] < 0.12
+
+
+@pytest.mark.parametrize(("forward", "left"), [(0.03, 0.02), (-0.02, -0.04), (0.0, 0.0)])
+def test_a_shuffle_ends_moved_with_the_feet_squared_and_moves_a_foot_only_in_the_air(forward, left):
+    stages = shuffle_stages(forward, left)
+    last = stages[-1]
+    assert last.torso == last.left == last.right == (forward, left)
+    before = stages[0]
+    for stage in stages[1:]:
+        for side in ("left", "right"):
+            moved = getattr(stage, side) != getattr(before, side)
+            lifted = getattr(stage, f"{side}_lift") > 0 and getattr(before, f"{side}_lift") > 0
+            assert not moved or lifted
+        # never both feet in the air
+        assert not (stage.left_lift > 0 and stage.right_lift > 0)
+        before = stage
 
 
 @pytest.mark.parametrize(
