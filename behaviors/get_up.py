@@ -40,12 +40,17 @@ SETTLED_CYCLES = 3
 MAX_SETTLE_S = 1.0
 #: The sequence that turns a robot lying on its left side onto its back (mirrored for the right).
 ROLL_FROM_LEFT = "roll_left_to_back"
-#: A back get-up has sat up by the end of its first SAT_UP_FRAMES frames; from then on a torso
-#: more than ABORT_TILT_DEG from vertical means it fell back (measured, type 0 and 1: torso
-#: within 35 deg of vertical after the sit-up when the attempt succeeds, 65-90 deg when it
-#: fails). The attempt is abandoned at once so that a retry fits into the seconds left.
+#: A back get-up has sat up by the end of its first SAT_UP_FRAMES frames: from then on a torso
+#: more than ABORT_TILT_DEG from vertical means it lies again. Once the legs are folded under
+#: it (FOLDED_FRAMES), leaning back more than ABORT_BACK_DEG means it is tipping back over.
+#: Measured on type 0 (25 back falls): after the fold a successful attempt leans back at most
+#: 21 deg, a failing one passes 40 deg 0.1-0.3 s before 60; type 1 still leans back 35-48 deg
+#: right after its sit-up frames, type 3's squat leans forward up to 61 deg and still stands.
+#: The attempt is abandoned at once so that a retry fits into the seconds left.
 SAT_UP_FRAMES = 2
-ABORT_TILT_DEG = 60.0
+FOLDED_FRAMES = 3
+ABORT_TILT_DEG = 75.0
+ABORT_BACK_DEG = 40.0
 
 
 def feet_load(state: RobotState) -> float:
@@ -76,8 +81,10 @@ class _Attempt:
 
     player: KeyframePlayer | None = None
     rolling: bool = False
-    #: seconds into the sequence from which a fallen torso ends the attempt (None: never)
+    #: seconds into the sequence from which a lying torso ends the attempt (None: never) ...
     abort_after_s: float | None = None
+    #: ... and from which a torso leaning back too far ends it
+    lean_abort_after_s: float | None = None
     settled_cycles: int = 0
     waited_cycles: int = 0
 
@@ -141,12 +148,15 @@ class GetUpSkill(Skill):
             self._attempt = _Attempt(KeyframePlayer(sequence, state.robot_type), rolling=True)
         else:
             sequence = sequence_for(f"get_up_{side}", state.robot_type, self.sequences)
-            abort_after = None
+            player = KeyframePlayer(sequence, state.robot_type)
             if side == "back":
-                abort_after = sum(frame.total for frame in sequence.frames[:SAT_UP_FRAMES])
-            self._attempt = _Attempt(
-                KeyframePlayer(sequence, state.robot_type), abort_after_s=abort_after
-            )
+                self._attempt = _Attempt(
+                    player,
+                    abort_after_s=sum(frame.total for frame in sequence.frames[:SAT_UP_FRAMES]),
+                    lean_abort_after_s=sum(f.total for f in sequence.frames[:FOLDED_FRAMES]),
+                )
+            else:
+                self._attempt = _Attempt(player)
 
     def _play(self, context: SkillContext, state: RobotState) -> bool:
         attempt = self._attempt
@@ -170,11 +180,18 @@ class GetUpSkill(Skill):
         """A back get-up past its sit-up with the torso lying again: the attempt failed."""
         attempt = self._attempt
         assert attempt.player is not None
-        return (
+        elapsed = attempt.player.elapsed
+        lying = (
             attempt.abort_after_s is not None
-            and attempt.player.elapsed >= attempt.abort_after_s
+            and elapsed >= attempt.abort_after_s
             and state.tilt_deg > ABORT_TILT_DEG
         )
+        tipping = (
+            attempt.lean_abort_after_s is not None
+            and elapsed >= attempt.lean_abort_after_s
+            and state.pitch_deg < -ABORT_BACK_DEG
+        )
+        return lying or tipping
 
     @staticmethod
     def _in_final_hold(player: KeyframePlayer) -> bool:
