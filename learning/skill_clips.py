@@ -94,8 +94,8 @@ def _dribble_clip(kind: str, foot: str) -> Scenario:
 
 
 def get_up_clip(agent: LocalAgent) -> Iterator[None]:
-    """Pushed over onto its front by its own joints, then the get-up."""
-    knock_over(agent, "front", np.random.default_rng(3))
+    """Pushed over backwards by its own joints (most falls end on the back), then the get-up."""
+    knock_over(agent, "back", np.random.default_rng(3))
     for _ in range(10):
         agent.send({})
         yield
@@ -111,7 +111,7 @@ CLIPS: dict[str, Clip] = {
     "dfdl": Clip(_dribble_clip("dfdl", "left"), 4.0, "double-footed dribble", 2.2),
     "lfdl": Clip(_dribble_clip("lfdl", "left"), 4.0, "left-footed dribble", 2.2),
     "lfdl_right": Clip(_dribble_clip("lfdl", "right"), 4.0, "LFDL mirrored", 2.2),
-    "get_up": Clip(get_up_clip, 6.0, "fall onto the front, get up"),
+    "get_up": Clip(get_up_clip, 6.0, "fall onto the back, get up"),
 }
 
 
