@@ -15,8 +15,7 @@ Parameters: the first frames' joint targets (left and right moved together as mi
 and frame durations. One parameter at a time is moved by +-step; a move is kept if the total
 score over the bank rises; the steps halve after a pass without gain.
 
-Run (one robot type per process: pybullet's restoreState is unreliable once a second session
-in the same process has created bodies)::
+Run (one robot type per process keeps each search's memory small)::
 
     nice -n 5 .venv/bin/python learning/get_up_search.py --sequence get_up_front \\
         --type 0 --direction front --falls 12 --passes 2 --write get_up_front
