@@ -55,14 +55,14 @@ def run_trial(robot_type: int, direction: str, seed: int, time_limit: float = 4.
         cycles = 0
         finished = False
         while not finished and cycles < round(time_limit / CYCLE_SECONDS):
-            finished = driver.run_skill("get_up")
+            finished = driver.run("get_up")
             cycles += 1
         if not finished:
             return TrialResult(robot_type, direction, lying_on, False, None)
         elapsed = cycles * CYCLE_SECONDS
         standing_now = driver.is_standing()
         for _ in range(25):  # still up half a second later, holding the stand pose
-            driver.run_skill("pose", "stand")
+            driver.run("pose", "stand")
         ok = standing_now and driver.is_standing()
         return TrialResult(robot_type, direction, lying_on, ok, elapsed if ok else None)
     finally:

@@ -112,17 +112,17 @@ def run_trial(
         bx, by = place_ball_in_front_of(
             driver, foot, motion.ball_gap_m + gap_error, motion.ball_side_m
         )
-        driver.run_skill("pose", "stand")  # the placement acts on the next cycle
+        driver.run("pose", "stand")  # the placement acts on the next cycle
         cycles, contact, fell = 0, None, False
         finished = False
         while not finished:
-            finished = driver.run_skill("kick", foot, strength)
+            finished = driver.run("kick", foot, strength)
             cycles += 1
             if contact is None and session.ball.speed() > MOVING_SPEED:
                 contact = cycles
             fell |= robot.has_fallen()
         for _ in range(ROLL_OUT_CYCLES):
-            driver.run_skill("pose", "stand")
+            driver.run("pose", "stand")
             fell |= robot.has_fallen()
         x, y, _ = session.ball.position()
         heading = math.radians(START[2])

@@ -36,64 +36,13 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-import behaviors  # noqa: F401  (registers the built-in skills)
-from behaviors.manager import Behavior
-from sim.monitor import parse_trainer_commands
+from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
-from world.effectors import EffectorMessage, write_effectors
 from world.nao_model import ROBOT_TYPES
-from world.perception import parse_perception
-from world.world_model import WorldModel
-
-SCENE = "rsg/agent/nao/nao_hetero.rsg"
 
 
-class WalkDriver:
-    """One agent in-process: perception bytes -> WorldModel -> skills -> effector bytes."""
-
-    def __init__(self, session: Session, robot_type: int, beam: tuple[float, float, float]):
-        self.session = session
-        self.robot_type = robot_type
-        self.agent = session.add_agent()
-        session.handle_message(self.agent, f"(scene {SCENE} {robot_type})".encode())
-        session.step()
-        session.handle_message(self.agent, b"(init (unum 1)(teamname Walkers))(syn)")
-        session.step()
-        x, y, deg = beam
-        session.handle_message(self.agent, f"(beam {x:.3f} {y:.3f} {deg:.1f})(syn)".encode())
-        session.step()
-        session.step()
-        self.world = WorldModel(robot_type, "Walkers")
-        self.behavior = Behavior(self.world, robot_type)
-        self.trainer("(playMode PlayOn)")
-        self.stand_up()
-
-    def stand_up(self) -> None:
-        """Rise slowly from the beam's (or the trainer's) zero pose into the stand pose."""
-        while not self.run("keyframe", "stand_up_slowly"):
-            pass
-        for _ in range(25):
-            self.run("pose", "stand")
-
-    @property
-    def robot(self):
-        return self.session.agents[self.agent].robot
-
-    def trainer(self, text: str) -> None:
-        commands, errors = parse_trainer_commands(text.encode())
-        if errors:
-            raise ValueError(errors)
-        self.session.trainer_command(commands)
-
-    def run(self, name: str, *args: object) -> bool:
-        """One cycle of skill ``name``: perceive, execute, send, step the simulator."""
-        self.world.update(parse_perception(self.session.perception(self.agent)))
-        self.behavior.begin_cycle()
-        finished = self.behavior.execute(name, *args)
-        message = EffectorMessage(joint_speeds=self.behavior.effector_speeds(), syn=True)
-        self.session.handle_message(self.agent, write_effectors(message))
-        self.session.step()
-        return finished
+class WalkDriver(LocalAgent):
+    """A :class:`~learning.local_agent.LocalAgent` with the ground truth the walk figures need."""
 
     def ground_pose(self) -> tuple[float, float, float]:
         """Ground truth: torso x, y (world) and heading (deg)."""
@@ -108,12 +57,16 @@ class WalkDriver:
         self.trainer(f"(agent (team Left) (unum 1) (move {x:.2f} {y:.2f} 0.4 0))")
         self.session.step()
         self.session.step()
-        self.stand_up()
+        self.rise_to_stand()
 
 
 def new_driver(robot_type: int, seed: int, beam=(-8.0, 0.0, 0.0)) -> WalkDriver:
+    """A robot of ``robot_type`` beamed to ``beam``, standing, in PlayOn."""
     session = Session(SessionConfig(seed=seed, beam_noise=False))
-    return WalkDriver(session, robot_type, beam)
+    driver = WalkDriver.join(session, "Walkers", 1, robot_type, beam=beam)
+    driver.trainer("(playMode PlayOn)")
+    driver.rise_to_stand()
+    return driver
 
 
 @dataclass(frozen=True)

@@ -99,9 +99,6 @@ class LocalAgent:
         self.session.step()
         return finished
 
-    #: Old name kept for callers written against the get-up benchmark's driver.
-    run_skill = run
-
     def rise_to_stand(self) -> LocalAgent:
         """From the beam's zero pose rise slowly into ``stand`` and hold it half a second:
         jumping into the stand's bent knees at once tips the robot over."""

@@ -184,7 +184,7 @@ def test_the_stand_pose_is_held_upright(robot_type):
         robot = session.agents[driver.agent].robot
         tilts = []
         for _ in range(75):
-            driver.run_skill("pose", "stand")
+            driver.run("pose", "stand")
             tilts.append(np.degrees(np.arccos(min(1.0, robot.torso_up()[2]))))
         assert max(tilts) < 8.0, tilts
     finally:
@@ -196,7 +196,7 @@ def test_a_standing_robot_finishes_at_once(robot_type):
     session = Session(SessionConfig(seed=2, beam_noise=False))
     try:
         driver = join(session, robot_type, np.random.default_rng(2))
-        assert driver.run_skill("get_up")
+        assert driver.run("get_up")
     finally:
         session.close()
 
@@ -224,9 +224,9 @@ def test_fall_side_from_perception_matches_the_simulator(direction):
         truth = max(down, key=down.get)
         assert driver.state.is_fallen
         assert driver.state.lying_on == truth
-        driver.run_skill("get_up")
+        driver.run("get_up")
         for _ in range(5):
-            driver.run_skill("get_up")
+            driver.run("get_up")
         skill = driver.behavior._skills["get_up"]
         assert isinstance(skill, GetUpSkill)
         assert skill.lying_on == truth

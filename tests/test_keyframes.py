@@ -186,10 +186,10 @@ def test_pose_and_keyframe_skills_through_the_manager():
     session = Session(SessionConfig(seed=5, beam_noise=False))
     try:
         driver = join(session, 0, np.random.default_rng(5))  # runs "pose stand" for 1 s
-        assert driver.run_skill("pose", "stand")
+        assert driver.run("pose", "stand")
         assert driver.is_standing()
         cycles = 0
-        while not driver.run_skill("keyframe", "stand_up_slowly"):
+        while not driver.run("keyframe", "stand_up_slowly"):
             cycles += 1
         assert cycles + 1 == round(get_sequence("stand_up_slowly").duration / CYCLE_SECONDS)
         assert driver.is_standing()
