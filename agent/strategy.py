@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from world.field_geometry import HALF_LENGTH
+from world.localization import wrap_deg
 from world.yaml_config import load_yaml_config
 
 #: Play modes in which the rules allow beaming.
@@ -169,7 +170,7 @@ class Strategy:
             bx - attack.behind_ball_m * math.cos(to_goal),
             by - attack.behind_ball_m * math.sin(to_goal),
         )
-        facing = abs(_wrap_deg(pose.heading_deg - math.degrees(to_goal)))
+        facing = abs(wrap_deg(pose.heading_deg - math.degrees(to_goal)))
         if "dribble" in skills:
             near_ball = math.dist((pose.x, pose.y), (bx, by)) < attack.dribble_keep_m
             ready = (
@@ -188,8 +189,3 @@ class Strategy:
             behavior.execute("walk", x, y, 0.0)
         else:
             behavior.execute("pose", "stand")
-
-
-def _wrap_deg(angle: float) -> float:
-    """An angle in degrees wrapped to [-180, 180)."""
-    return (angle + 180.0) % 360.0 - 180.0

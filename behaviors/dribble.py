@@ -53,6 +53,7 @@ from behaviors.mirror import (
 )
 from behaviors.skill import Skill, SkillContext
 from behaviors.walk import WalkEngine, WalkParameters, _read_parameters
+from world.localization import wrap_deg
 from world.nao_model import ROBOT_TYPES
 from world.perception import ForceResistance
 from world.robot_state import RobotState
@@ -208,10 +209,6 @@ def _calm_share(tilt_deg: float, gait: DribbleGait) -> float:
 
 def _clip(value: float, limit: float) -> float:
     return min(max(value, -limit), limit)
-
-
-def _wrap_deg(angle: float) -> float:
-    return (angle + 180.0) % 360.0 - 180.0
 
 
 # --------------------------------------------------------------------------------------------
@@ -437,6 +434,6 @@ def _perceived_inputs(context: SkillContext, direction_deg: float) -> DribbleInp
         float(ball[1]),
         float(velocity[0]),
         float(velocity[1]),
-        _wrap_deg(direction_deg - pose.heading_deg),
+        wrap_deg(direction_deg - pose.heading_deg),
         world.robot.tilt_deg,
     )

@@ -37,6 +37,7 @@ from behaviors.ik import LegIK, leg_ik_for
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.skill import Skill, SkillContext
 from behaviors.step_generator import FootTargets, StepCommand, StepGenerator, StepParameters
+from world.localization import wrap_deg
 from world.nao_model import ROBOT_TYPES, robot_spec
 
 __all__ = [
@@ -473,8 +474,8 @@ class WalkSkill(_WalkBase):
         travel = math.degrees(math.atan2(dy, dx))
         facing_travel = distance > (FACE_TRAVEL_DISTANCE if heading is None else 1.5)
         goal_heading = travel if facing_travel else (ph if heading is None else heading)
-        heading_error = _wrap_deg(goal_heading - ph)
-        final_error = 0.0 if heading is None else _wrap_deg(heading - ph)
+        heading_error = wrap_deg(goal_heading - ph)
+        final_error = 0.0 if heading is None else wrap_deg(heading - ph)
         if self._arrived:
             if distance > LEAVE_DISTANCE or abs(final_error) > LEAVE_HEADING_DEG:
                 self._arrived = False
@@ -502,7 +503,3 @@ class WalkSkill(_WalkBase):
         vy = max(-max_side, min(max_side, vy))
         vturn = max(-g.max_turn_deg, min(g.max_turn_deg, g.heading_gain * heading_error))
         return vx, vy, vturn
-
-
-def _wrap_deg(angle: float) -> float:
-    return (angle + 180.0) % 360.0 - 180.0

@@ -23,9 +23,9 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from agent.agent import Agent, AgentConfig
+from sim.physics import CYCLE_SECONDS
 from sim.session import Session, SessionConfig
 
-CYCLE_SECONDS = 0.02
 #: cycles before kick-off: beam, stand up, settle
 PREPARE_CYCLES = 100
 

@@ -40,6 +40,7 @@ from sim.scene_graph import MonitorHeader, SceneGraph
 from sim.vision import VisibleRobot, VisionSensor
 from world.effectors import EffectorMessage, parse_effectors
 from world.field_geometry import BALL_RADIUS
+from world.localization import wrap_deg
 from world.perception import GameState, Heard, Perception, Vision, write_perception
 from world.yaml_config import load_yaml_config
 
@@ -548,7 +549,7 @@ class Session:
                 if math.hypot(offset[0], offset[1]) > HEAR_DISTANCE:
                     continue
                 bearing = math.degrees(math.atan2(offset[1], offset[0]))
-                direction = _wrap_deg(bearing - slot.robot.torso_yaw_deg())
+                direction = wrap_deg(bearing - slot.robot.torso_yaw_deg())
             result.append(
                 Heard(speaker.team_name or "", self.referee.game_time, direction, message)
             )
@@ -618,7 +619,3 @@ def _slot_state(slot: AgentSlot) -> dict:
 
 def _has_actions(message: EffectorMessage) -> bool:
     return bool(message.init or message.beam or message.joint_speeds or message.say is not None)
-
-
-def _wrap_deg(angle: float) -> float:
-    return (angle + 180.0) % 360.0 - 180.0
