@@ -213,14 +213,11 @@ class _Signature:
 
     signature: inspect.Signature
     types: dict[str, Any]
+    #: whether an annotation checks values (``Literal``), so types alone cannot be cached
+    value_sensitive: bool = False
     #: argument type tuples already accepted: a skill runs every cycle with the same kinds of
     #: arguments, and binding the signature each time cost 0.1-0.2 ms of a 1 ms think budget
     _accepted: set[tuple[type, ...]] = field(default_factory=set, compare=False, repr=False)
-
-    @property
-    def value_sensitive(self) -> bool:
-        """Whether an annotation checks values (``Literal``), so types alone cannot be cached."""
-        return any("Literal" in repr(t) for t in self.types.values())
 
     @classmethod
     def of(cls, skill_class: type[Skill]) -> _Signature:
@@ -230,7 +227,7 @@ class _Signature:
             for p in signature.parameters.values()
             if p.annotation is not inspect.Parameter.empty and not isinstance(p.annotation, str)
         }
-        return cls(signature, types)
+        return cls(signature, types, any(map(_checks_values, types.values())))
 
     def text(self, name: str) -> str:
         return f"{name}{_signature_text(self.signature)}"
@@ -262,6 +259,13 @@ class _Signature:
                         f"{_type_name(expected)}, got {item!r}\nregistered skills:\n"
                         f"{describe_skills()}"
                     )
+
+
+def _checks_values(expected: Any) -> bool:
+    """Whether :func:`_matches` looks at values for ``expected`` (a ``Literal`` anywhere in it)."""
+    if typing.get_origin(expected) is typing.Literal:
+        return True
+    return any(_checks_values(arg) for arg in typing.get_args(expected))
 
 
 def _matches(value: Any, expected: Any) -> bool:

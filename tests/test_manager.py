@@ -6,6 +6,7 @@ from __future__ import annotations
 import subprocess
 import sys
 from types import SimpleNamespace
+from typing import Literal
 
 import numpy as np
 import pytest
@@ -72,6 +73,15 @@ class Typed(Skill):
             raise ValueError(f"distance must be >= 0, got {distance}")
 
     def step(self, context: SkillContext, distance: float, label: str | None = None) -> bool:
+        return True
+
+
+class Sided(Skill):
+    """Takes a foot by name: its annotation checks values, not only types."""
+
+    name = "test_sided"
+
+    def step(self, context: SkillContext, foot: Literal["left", "right"]) -> bool:
         return True
 
 
@@ -243,6 +253,13 @@ def test_accepted_argument_types_are_remembered_but_other_calls_still_checked(ma
         manager.execute("test_typed", "far", "x")
     with pytest.raises(ValueError, match="distance must be >= 0"):
         manager.execute("test_typed", -1.0, "x")
+
+
+def test_literal_arguments_are_checked_on_every_call(manager):
+    """A ``Literal`` check depends on the value, so an accepted call does not excuse the next."""
+    assert manager.execute("test_sided", "left") is True
+    with pytest.raises(TypeError, match="'foot'"):
+        manager.execute("test_sided", "middle")
 
 
 def test_bad_argument_value_is_a_value_error_with_the_signature(manager):
