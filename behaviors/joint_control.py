@@ -25,8 +25,8 @@ import math
 from collections.abc import Mapping
 
 from world.nao_model import robot_spec
+from world.perception import CYCLE_SECONDS
 
-CYCLE_SECONDS = 0.02
 #: Fraction of the remaining error a joint is asked to close per cycle (see the module docstring).
 DEFAULT_GAIN = 0.25
 

@@ -35,7 +35,8 @@ from typing import Any, Protocol
 
 import pybullet
 
-CYCLE_SECONDS = 0.02
+from world.perception import CYCLE_SECONDS
+
 GRAVITY = -9.81
 #: Sequential-impulse iterations per step (Bullet's default is 50). With 10, loaded joints give
 #: under the robot's weight (type 4's toes sag 30-50 deg) and an agent holding a crouch through

@@ -28,6 +28,7 @@ from typing import Protocol
 from sim.monitor import parse_trainer_commands
 from sim.session import Session
 from world.framing import FrameDecoder, FrameError, frame
+from world.perception import CYCLE_SECONDS
 
 log = logging.getLogger(__name__)
 
@@ -121,7 +122,7 @@ class SoccerServer:
                 self._poll(max(0.0, next_cycle - time.monotonic()))
                 if time.monotonic() < next_cycle:
                     continue
-                next_cycle += 0.02
+                next_cycle += CYCLE_SECONDS
                 if time.monotonic() - next_cycle > 1.0:  # fell far behind: do not try to catch up
                     next_cycle = time.monotonic()
             self.run_cycle()

@@ -13,6 +13,11 @@ from dataclasses import dataclass, field
 from world.field_geometry import LANDMARKS
 from world.sexp import ProtocolError, SExpr, dumps, parse
 
+#: The server's cycle: one perception and one physics step every 0.02 s (rcssserver3d's
+#: ``simulationtime``). The single definition; robot state, joint control and the simulator
+#: import it from here.
+CYCLE_SECONDS = 0.02
+
 __all__ = [
     "FRP_BEFORE_JOINT",
     "ForceResistance",

@@ -14,9 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from world.nao_model import RobotSpec, robot_spec
-from world.perception import ForceResistance, Perception
+from world.perception import CYCLE_SECONDS, ForceResistance, Perception
 
-CYCLE_SECONDS = 0.02
 GRAVITY = 9.81
 #: Weight of the accelerometer's gravity direction in each cycle's tilt estimate.
 ACCELEROMETER_TRUST = 0.05
