@@ -31,17 +31,19 @@ import argparse
 import math
 import statistics
 import sys
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import pybullet
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.kick import KickMotion, kick_motion
 from learning.local_agent import LocalAgent
+from sim.robot import SimRobot
 from sim.session import Session, SessionConfig
 from world.field_geometry import BALL_RADIUS
 
@@ -99,10 +101,14 @@ def run_trial(
     robot_type: int = 0,
     gap_error: float = 0.0,
     motions: Mapping[str, KickMotion] | None = None,
+    observe: Callable[[Session, SimRobot], None] | None = None,
+    side_error: float = 0.0,
 ) -> KickResult:
     """One kick from a stand; see the module docstring for what is measured. The ball lies
     where the kick expects it (its ``ball_gap_m``, ``ball_side_m``) plus ``gap_error`` m
-    further ahead; ``motions`` replaces the packaged kicks (searches)."""
+    further ahead and ``side_error`` m further outwards; ``motions`` replaces the packaged
+    kicks (searches); ``observe`` is called after every kick cycle with the session and the
+    robot (impact measurements)."""
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     try:
         driver = stand_up(session, robot_type)
@@ -110,7 +116,7 @@ def run_trial(
         motion = kick_motion(robot_type, motions)
         robot = session.agents[driver.agent].robot
         bx, by = place_ball_in_front_of(
-            driver, foot, motion.ball_gap_m + gap_error, motion.ball_side_m
+            driver, foot, motion.ball_gap_m + gap_error, motion.ball_side_m + side_error
         )
         driver.run("pose", "stand")  # the placement acts on the next cycle
         cycles, contact, fell = 0, None, False
@@ -118,6 +124,8 @@ def run_trial(
         while not finished:
             finished = driver.run("kick", foot, strength)
             cycles += 1
+            if observe is not None:
+                observe(session, robot)
             if contact is None and session.ball.speed() > MOVING_SPEED:
                 contact = cycles
             fell |= robot.has_fallen()
@@ -139,6 +147,99 @@ def run_trial(
         )
     finally:
         session.close()
+
+
+@dataclass(frozen=True)
+class ImpactResult:
+    """Where a stand kick's power goes: the kicking foot's speed as it meets the ball, the
+    ball's speed just after, and the kicking leg's joint speeds then."""
+
+    kick: KickResult
+    #: the kicking foot's centre-of-mass speed (m/s) in the cycle before the ball moves
+    foot_speed_m_s: float
+    #: the fastest foot or shank surface speed (m/s) over the kick (``striking_speed``)
+    peak_striking_speed_m_s: float
+    #: the ball's fastest speed (m/s) in the three cycles from the contact on
+    ball_speed_m_s: float
+    #: kicking leg's hip pitch, knee and ankle pitch speeds (deg/s) in the cycle before contact
+    joint_speeds_deg_s: tuple[float, float, float]
+
+    @property
+    def ratio(self) -> float:
+        """Ball speed over foot speed: about 1 + e (0.8) for a heavy foot hitting squarely."""
+        return self.ball_speed_m_s / self.foot_speed_m_s if self.foot_speed_m_s else math.nan
+
+
+class _ImpactRecorder:
+    """Per-cycle samples of the kicking foot's speed, the leg's joint speeds and the ball's."""
+
+    def __init__(self, foot: str) -> None:
+        self.foot = foot
+        self.samples: list[tuple[float, float, float, tuple[float, float, float]]] = []
+
+    def __call__(self, session: Session, robot: SimRobot) -> None:
+        name = "lfoot" if self.foot == "left" else "rfoot"
+        state = pybullet.getLinkState(
+            robot.body_id,
+            robot.link_index(name),
+            computeLinkVelocity=1,
+            physicsClientId=robot.world.client,
+        )
+        speeds = robot.joint_velocities()
+        side = "l" if self.foot == "left" else "r"
+        joints = tuple(math.degrees(speeds[f"{side}lj{k}"]) for k in (3, 4, 5))
+        sample = (math.hypot(*state[6]), robot.striking_speed(), session.ball.speed(), joints)
+        self.samples.append(sample)  # type: ignore[arg-type]
+
+    def result(self, kick: KickResult) -> ImpactResult:
+        moving = [i for i, s in enumerate(self.samples) if s[2] > MOVING_SPEED]
+        if not moving:
+            return ImpactResult(kick, math.nan, math.nan, 0.0, (math.nan,) * 3)
+        first = moving[0]
+        before = self.samples[max(first - 1, 0)]
+        after = max(s[2] for s in self.samples[first : first + 3])
+        peak = max(s[1] for s in self.samples)
+        return ImpactResult(kick, before[0], peak, after, before[3])
+
+
+def measure_impact(
+    foot: str,
+    strength: float,
+    seed: int = 0,
+    robot_type: int = 0,
+    motions: Mapping[str, KickMotion] | None = None,
+) -> ImpactResult:
+    """A stand kick (:func:`run_trial`) with the foot and ball speeds around the contact."""
+    recorder = _ImpactRecorder(foot)
+    kick = run_trial(foot, strength, seed, robot_type, 0.0, motions, recorder)
+    return recorder.result(kick)
+
+
+def impacts(seeds: int, robot_type: int, strengths: list[float]) -> None:
+    """Print foot and ball speeds at contact per strength (medians over seeds and feet)."""
+    for strength in strengths:
+        results = [
+            measure_impact(foot, strength, seed, robot_type)
+            for seed in range(seeds)
+            for foot in ("left", "right")
+        ]
+        for r in results:
+            joints = "/".join(f"{v:.0f}" for v in r.joint_speeds_deg_s)
+            print(
+                f"# {r.kick.foot} s={strength:g}: foot {r.foot_speed_m_s:.2f} m/s, peak striking "
+                f"{r.peak_striking_speed_m_s:.2f}, ball {r.ball_speed_m_s:.2f} m/s, "
+                f"hip/knee/ankle {joints} deg/s, {r.kick.distance_m:.2f} m",
+                flush=True,
+            )
+
+        def median(values: list[float]) -> float:
+            return statistics.median(values)
+
+        label = f"[strength={strength:g}]"
+        print(f"kick_foot_speed_m_s{label}: {median([r.foot_speed_m_s for r in results]):.2f}")
+        print(f"kick_ball_speed_m_s{label}: {median([r.ball_speed_m_s for r in results]):.2f}")
+        print(f"kick_speed_ratio{label}: {median([r.ratio for r in results]):.2f}")
+        print(f"kick_distance_m{label}: {median([r.kick.distance_m for r in results]):.2f}")
 
 
 @dataclass(frozen=True)
@@ -229,7 +330,13 @@ def main() -> None:
     parser.add_argument(
         "--basic-distance", default="3", help='metres asked of basic_kick, or "long"'
     )
+    parser.add_argument(
+        "--impact", action="store_true", help="foot and ball speeds at contact, then stop"
+    )
     args = parser.parse_args()
+    if args.impact:
+        impacts(args.seeds, args.robot_type, args.strengths or [1.0])
+        return
     if args.strengths:
         stand_kicks(args.seeds, args.robot_type, args.strengths)
     if args.basic_trials:
@@ -237,27 +344,44 @@ def main() -> None:
         basic_kicks(args.basic_trials, args.robot_type, asked)
 
 
-def basic_kicks(trials: int, robot_type: int, asked: float | str) -> None:
-    """``basic_kick`` from a stand, the ball 0.5-2 m away at random bearings; medians."""
-    rng = np.random.default_rng(1)
+def basic_kick_figures(
+    trials: int, robot_type: int, distance: float | str, seed: int = 0, verbose: bool = False
+) -> dict[str, float]:
+    """``basic_kick`` from a stand, the ball 0.5-2 m away at random bearings (layouts drawn
+    from ``seed``; trial ``k`` runs session seed ``k``): medians over the trials that kicked of
+    ``basic_kick_distance_m``, ``basic_kick_direction_error_deg`` (absolute) and
+    ``basic_kick_time_s`` (first ``basic_kick`` cycle to the ball moving), and the counts
+    ``basic_kick_falls`` and ``basic_kick_misses`` (trials that never kicked)."""
+    rng = np.random.default_rng(seed + 1)  # seed 0 keeps the layouts of earlier rounds
     results = []
-    for seed in range(trials):
+    for k in range(trials):
         layout = random_basic_layout(rng)
-        results.append(run_basic_trial(asked, seed, *layout, robot_type=robot_type))
-        r = results[-1]
-        print(f"# trial {seed}: {r}", flush=True)
+        results.append(run_basic_trial(distance, k, *layout, robot_type=robot_type))
+        if verbose:
+            print(f"# trial {k}: {results[-1]}", flush=True)
     kicked = [r for r in results if r.time_to_kick_s is not None]
-    label = f"[asked={asked}]"
 
     def median(values: list[float]) -> float:
-        return statistics.median(values) if values else math.nan
+        return float(statistics.median(values)) if values else math.nan
 
-    print(f"basic_kick_distance_m{label}: {median([r.distance_m for r in kicked]):.2f}")
-    errors = [abs(r.direction_error_deg) for r in kicked]
-    print(f"basic_kick_direction_error_deg{label}: {median(errors):.1f}")
-    print(f"basic_kick_time_s{label}: {median([r.time_to_kick_s for r in kicked]):.2f}")
-    print(f"basic_kick_falls{label}: {sum(r.fell for r in results)} of {len(results)}")
-    print(f"basic_kick_not_kicked{label}: {len(results) - len(kicked)} of {len(results)}")
+    return {
+        "basic_kick_distance_m": median([r.distance_m for r in kicked]),
+        "basic_kick_direction_error_deg": median([abs(r.direction_error_deg) for r in kicked]),
+        "basic_kick_time_s": median([r.time_to_kick_s for r in kicked]),  # type: ignore[misc]
+        "basic_kick_falls": float(sum(r.fell for r in results)),
+        "basic_kick_misses": float(len(results) - len(kicked)),
+    }
+
+
+def basic_kicks(trials: int, robot_type: int, asked: float | str) -> None:
+    """Print :func:`basic_kick_figures` as ``name[asked=...]: value`` lines."""
+    figures = basic_kick_figures(trials, robot_type, asked, verbose=True)
+    label = f"[asked={asked}]"
+    for name, value in figures.items():
+        if name in ("basic_kick_falls", "basic_kick_misses"):
+            print(f"{name}{label}: {value:.0f} of {trials}")
+        else:
+            print(f"{name}{label}: {value:.2f}")
 
 
 def stand_kicks(seeds: int, robot_type: int, strengths: list[float]) -> None:
