@@ -105,6 +105,13 @@ class GetUpSkill(Skill):
         #: the side the robot was found lying on when the current sequence started
         self.lying_on: str | None = None
 
+    @property
+    def playing(self) -> tuple[str, float] | None:
+        """The sequence being played and the seconds into it (None between attempts): what a
+        trace (``learning/get_up_trace.py``) shows next to the simulator's ground truth."""
+        player = self._attempt.player
+        return None if player is None else (player.sequence.name, player.elapsed)
+
     def reset(self) -> None:
         self._attempt = _Attempt()
         self.attempts = 0

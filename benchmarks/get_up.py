@@ -19,6 +19,7 @@ from __future__ import annotations
 import argparse
 import statistics
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -28,6 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.joint_control import CYCLE_SECONDS
 from learning.falls import FALL_DIRECTIONS, join_at_random_spot, knock_over
+from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
 from world.nao_model import ROBOT_TYPES
 
@@ -36,13 +38,24 @@ from world.nao_model import ROBOT_TYPES
 class TrialResult:
     robot_type: int
     direction: str
+    seed: int
     lying_on: str | None
     succeeded: bool
     #: seconds from the first get_up cycle to the cycle it reported standing (None: it did not)
     time_s: float | None
 
 
-def run_trial(robot_type: int, direction: str, seed: int, time_limit: float = 4.0) -> TrialResult:
+#: Called after every get-up cycle with the agent and the cycle number (a trace, a clip).
+Observer = Callable[[LocalAgent, int], None]
+
+
+def run_trial(
+    robot_type: int,
+    direction: str,
+    seed: int,
+    time_limit: float = 4.0,
+    observer: Observer | None = None,
+) -> TrialResult:
     """One fall and one get-up; see the module docstring for what counts as success."""
     rng = np.random.default_rng(seed)
     session = Session(SessionConfig(seed=seed, beam_noise=False))
@@ -57,14 +70,16 @@ def run_trial(robot_type: int, direction: str, seed: int, time_limit: float = 4.
         while not finished and cycles < round(time_limit / CYCLE_SECONDS):
             finished = driver.run("get_up")
             cycles += 1
+            if observer is not None:
+                observer(driver, cycles)
         if not finished:
-            return TrialResult(robot_type, direction, lying_on, False, None)
+            return TrialResult(robot_type, direction, seed, lying_on, False, None)
         elapsed = cycles * CYCLE_SECONDS
         standing_now = driver.is_standing()
         for _ in range(25):  # still up half a second later, holding the stand pose
             driver.run("pose", "stand")
         ok = standing_now and driver.is_standing()
-        return TrialResult(robot_type, direction, lying_on, ok, elapsed if ok else None)
+        return TrialResult(robot_type, direction, seed, lying_on, ok, elapsed if ok else None)
     finally:
         session.close()
 
@@ -80,6 +95,11 @@ def main() -> None:
         help="fall directions, comma-separated, taken in turn (one side alone for tuning)",
     )
     parser.add_argument("--types", default=",".join(map(str, ROBOT_TYPES)))
+    parser.add_argument(
+        "--show-failures",
+        action="store_true",
+        help="list the failed trials (type, direction, seed) for learning/get_up_trace.py",
+    )
     args = parser.parse_args()
     directions = args.directions.split(",")
     robot_types = [int(t) for t in args.types.split(",")]
@@ -101,6 +121,10 @@ def main() -> None:
         if mine:
             rate = sum(r.succeeded for r in mine) / len(mine)
             print(f"get_up_success_rate[lying_on={side}]: {rate:.3f} ({len(mine)} trials)")
+    if args.show_failures:
+        for r in results:
+            if not r.succeeded:
+                print(f"failed: type {r.robot_type} {r.direction} seed {r.seed} lying {r.lying_on}")
 
 
 if __name__ == "__main__":
