@@ -10,10 +10,15 @@ The rules follow rcssserver3d 0.7.2 (``soccerruleaspect.cpp``, ``gamestateaspect
 ball-holding rule, which 0.7.2 does not have. Where this referee differs from the real server it
 is on purpose, and said so:
 
-- The real server also *moves robots* (opponents out of the centre circle at kick-off, out of the
-  free-kick distance at set pieces, fallen or crowding robots). This referee only reports rules
-  and places the ball; it moves no robot, so the kicking team is the one whose touch ends a set
-  piece (the real server accepts any touch because it has cleared the opponents away).
+- The real server's referee also moves robots; so does this one (``sim.referee_players``):
+  kick-offs, set pieces and drop balls are cleared, and robots lying too long or crowding their
+  own penalty area are taken off, with the real parameters, each rule switchable. Differences
+  there: a robot's extent is a fixed square around its torso, not its colliders' box; a moved
+  robot is not nudged off another robot it lands on ("safe reposition"); a moved robot's joints
+  keep their speeds (the real server stops every body); the touching and charging fouls, which
+  need robot-robot contacts, are not implemented.
+- Only the kicking team's touch ends a set piece; the real server accepts any touch, as it has
+  cleared the opponents away (here too, unless the clearing is switched off).
 - ``kick_off(None)`` within a half, after that half's first kick-off, gives the kick-off to the
   side that did not take the last one; the real server tosses a coin there.
 - A ball that leaves the field before anybody touched it is dropped back where it left; the real
@@ -23,12 +28,22 @@ is on purpose, and said so:
 from __future__ import annotations
 
 import math
+import random
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field, fields
 from enum import Enum
 from pathlib import Path
-from typing import Literal, TypeAlias
+from typing import TypeAlias
 
+from sim.referee_players import (
+    MovePlayer,
+    PlayerKey,
+    PlayerMover,
+    PositionalFoulMonitor,
+    Team,
+    Vec3,
+    penalty_box,
+)
 from world.field_geometry import (
     BALL_RADIUS,
     FIELD_WIDTH,
@@ -42,10 +57,6 @@ from world.field_geometry import (
 )
 from world.play_modes import play_mode_index
 from world.yaml_config import load_yaml_config
-
-Team: TypeAlias = Literal["left", "right"]
-Vec3: TypeAlias = tuple[float, float, float]
-PlayerKey: TypeAlias = tuple[Team, int]
 
 TEAMS: tuple[Team, Team] = ("left", "right")
 
@@ -83,6 +94,7 @@ _POSITIVE = "positive"
 _NON_NEGATIVE = "non_negative"
 _SIGNED = "signed"
 _FLAG = "flag"
+_COUNT = "count"
 
 
 def _param(default: float | bool, kind: str) -> float | bool:
@@ -109,9 +121,46 @@ class RefereeConfig:
     wait_before_kick_off: float = _param(30.0, _NON_NEGATIVE)
     #: SingleHalfTime: the game ends after the first half.
     single_half: bool = _param(False, _FLAG)
-    #: FreeKickDistance: radius opponents must keep at set pieces (and the centre circle). The
-    #: referee moves no robot; this is here for the session, which may enforce it.
+    #: FreeKickDistance: radius opponents must keep at set pieces (and the centre circle).
     free_kick_distance: float = _param(2.0, _NON_NEGATIVE)
+    #: FreeKickMoveDist: a cleared robot is put at least this far from the ball (or the edge of
+    #: the half or penalty area it must leave); the real server adds up to 2 m (or as much
+    #: again, for boxes) at random.
+    free_kick_move_distance: float = _param(2.2, _NON_NEGATIVE)
+    #: StartAnyFieldPosition: when true, nobody is kept in their half before and at kick-off.
+    start_any_field_position: bool = _param(False, _FLAG)
+    #: Clear the defending team from the free-kick circle (the penalty area at a goal kick) at
+    #: set pieces and both teams at drop balls. Always on in the real server; a switch here.
+    clear_set_pieces: bool = _param(True, _FLAG)
+    #: KickRepelDist: kicking-team robots closer to the ball's spot are pushed out to this
+    #: distance when the ball is put there (0: never).
+    kick_repel_distance: float = _param(0.5, _NON_NEGATIVE)
+    #: The "incapable" rule: robots lying or sitting too long are taken off the field.
+    incapable_rule: bool = _param(True, _FLAG)
+    #: NotStandingMaxTime: a field player's torso below 0.25 m this long is a foul.
+    not_standing_max_time: float = _param(30.0, _NON_NEGATIVE)
+    #: GoalieNotStandingMaxTime: the same for unum 1.
+    goalie_not_standing_max_time: float = _param(60.0, _NON_NEGATIVE)
+    #: GroundMaxTime: a field player's torso below 0.15 m this long is a foul.
+    ground_max_time: float = _param(15.0, _NON_NEGATIVE)
+    #: GoalieGroundMaxTime: the same for unum 1.
+    goalie_ground_max_time: float = _param(30.0, _NON_NEGATIVE)
+    #: Illegal defence: more than MaxPlayersInsideOwnArea robots in the own penalty area.
+    illegal_defence_rule: bool = _param(True, _FLAG)
+    #: MaxPlayersInsideOwnArea.
+    max_players_inside_own_area: int = _param(3, _COUNT)
+    #: Crowding: off in the real server since 2017 (its distances are 0 there). Switched on, the
+    #: distances below are the real server's until 2016 (kept commented in naosoccersim.rb).
+    crowding_rule: bool = _param(False, _FLAG)
+    #: MinOppDistance: crowding is judged only while an opponent is this close to the ball.
+    min_opp_distance: float = _param(0.8, _NON_NEGATIVE)
+    #: Min2PlDistance: a team's second-nearest field player may not be this close to the ball.
+    min_2pl_distance: float = _param(0.4, _NON_NEGATIVE)
+    #: Min3PlDistance: nor its third-nearest this close.
+    min_3pl_distance: float = _param(1.0, _NON_NEGATIVE)
+    #: FoulHoldTime: a robot called for a positional foul is held in the air this long before
+    #: it is put outside the field.
+    foul_hold_time: float = _param(0.5, _NON_NEGATIVE)
     #: GoalKickDist: a goal kick is taken this far in front of the goal line.
     goal_kick_distance: float = _param(1.0, _NON_NEGATIVE)
     #: The 2023 ball-holding rule, on by default (not in rcssserver3d 0.7.2).
@@ -144,6 +193,10 @@ def _value_problem(key: str, value: object, kind: str) -> str | None:
     if kind == _FLAG:
         if not isinstance(value, bool):
             return f"{key!r} must be true or false, got {value!r}"
+        return None
+    if kind == _COUNT:
+        if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+            return f"{key!r} must be a whole number >= 0, got {value!r}"
         return None
     if isinstance(value, bool) or not isinstance(value, int | float):
         return f"{key!r} must be a number, got {type(value).__name__} {value!r}"
@@ -256,7 +309,7 @@ class Event:
     text: str
 
 
-RefereeAction: TypeAlias = PlaceBall | Event
+RefereeAction: TypeAlias = PlaceBall | MovePlayer | Event
 
 
 # --------------------------------------------------------------------------------------------
@@ -472,10 +525,16 @@ class Referee:
     contacts were found: the first counts as the last toucher, as on the real server). Commands
     (:meth:`kick_off`, :meth:`set_play_mode`, :meth:`drop_ball`) may come between cycles; their
     actions are returned by the next :meth:`step`.
+
+    ``seed`` seeds the random choices the real server makes when it moves robots (how far a
+    cleared robot goes, which robot is looked at first), so that a game can be replayed.
     """
 
-    def __init__(self, config: RefereeConfig | None = None) -> None:
+    def __init__(self, config: RefereeConfig | None = None, seed: int = 0) -> None:
         self._config = config if config is not None else RefereeConfig()
+        self._rng = random.Random(seed)
+        self._fouls = PositionalFoulMonitor(self._config)
+        self._mover = PlayerMover({}, self._rng, self._config.free_kick_move_distance)
         self._play_mode = "BeforeKickOff"
         self._mode_time = 0.0
         self._game_time = 0.0
@@ -545,6 +604,12 @@ class Referee:
     def ball_holding(self) -> BallHoldingMonitor:
         """The ball-holding records (read them; the referee updates them)."""
         return self._holding
+
+    @property
+    def positional_fouls(self) -> PositionalFoulMonitor:
+        """The incapable / illegal defence / crowding records (read them; the referee updates
+        them)."""
+        return self._fouls
 
     # ---- commands ----------------------------------------------------------------------------
 
@@ -646,13 +711,27 @@ class Referee:
             raise ValueError(f"dt must be a finite non-negative number, got {dt!r}")
         self._cycle += 1
         touched = [(_check_team(team), unum) for team, unum in touches]
+        positions = {p.key: tuple(float(v) for v in p.position) for p in players}
+        self._mover = PlayerMover(positions, self._rng, self._config.free_kick_move_distance)
         self._advance_clocks(dt)
         self._observe_ball(ball, touched)
         self._check_time()
         self._update_mode(dt, ball, players, touched)
+        self._judge_positions(dt)
         self._previous_ball = self._ball_position
         actions, self._outbox = self._outbox, []
-        return actions
+        return actions + self._mover.moves
+
+    def _judge_positions(self, dt: float) -> None:
+        """The real server's automatic referee: positional fouls are judged while the game runs
+        and forgotten while it is paused (before kick-off and in the goal pauses)."""
+        if self._play_mode in BEAM_MODES:
+            self._fouls.reset()
+            return
+        kick_off_team = (
+            _mode_team(self._play_mode) if self._play_mode.startswith("KickOff_") else None
+        )
+        self._fouls.update(dt, self._ball_position, self._mover, kick_off_team)
 
     def _advance_clocks(self, dt: float) -> None:
         self._mode_time += dt
@@ -692,12 +771,14 @@ class Referee:
         if mode == "BeforeKickOff":
             self._update_before_kick_off(ball, players)
         elif mode.startswith("KickOff_"):
+            self._clear_for_kick_off(_mode_team(mode))
             self._update_kick_off(touched)
         elif mode in ("PlayOn", "pass_left", "pass_right"):
             self._update_play_on(dt, ball, players)
         elif _is_set_piece(mode):
             self._update_set_piece(_mode_team(mode), ball, touched)
         elif mode.startswith("Goal_"):
+            self._clear_for_kick_off(other_team(_mode_team(mode)))
             self._update_goal(_mode_team(mode))
 
     # ---- play modes --------------------------------------------------------------------------
@@ -707,6 +788,8 @@ class Referee:
         automatically only when configured to."""
         if players:
             self._hold_ball_on(CENTRE_SPOT, ball)
+            if not self._config.start_any_field_position:
+                self._mover.keep_in_halves()
         if self._config.auto_kick_off and self._mode_time > self._config.wait_before_kick_off:
             self.kick_off(None)
 
@@ -735,11 +818,12 @@ class Referee:
         area); after RuleDropBallTime untaken, the ball is dropped."""
         if self._mode_time < self._config.kick_in_pause_time - _CLOCK_SLACK:
             return
+        is_goal_kick = self._play_mode.startswith("goal_kick_")
+        self._clear_for_set_piece(kicker, is_goal_kick)
         drop_time = self._config.drop_ball_time
         if drop_time > 0 and self._mode_time > drop_time:
             self._drop_ball_at(self._spot)
             return
-        is_goal_kick = self._play_mode.startswith("goal_kick_")
         taken_now = self._spot_placed and any(team == kicker for team, _ in touched)
         if is_goal_kick and (self._goal_kick_taken or taken_now):
             self._goal_kick_taken = True
@@ -750,6 +834,8 @@ class Referee:
         if taken_now:
             self._set_mode("PlayOn")
             return
+        if not self._spot_placed and self._config.kick_repel_distance > 0:
+            self._mover.repel(kicker, self._spot, self._config.kick_repel_distance)
         self._hold_ball_on(self._spot, ball, force=not self._spot_placed)
         self._spot_placed = True
 
@@ -882,14 +968,44 @@ class Referee:
         return free_kick_spot(self._ball_position)
 
     def _drop_ball_at(self, position: Sequence[float]) -> None:
+        """DropBall: the ball goes down out of the penalty areas, both teams are cleared from
+        around it (in a random order) and play goes on."""
         spot = drop_ball_spot(position)
         self._place_ball(spot)
+        if self._config.clear_set_pieces:
+            teams: list[Team] = list(TEAMS)
+            self._rng.shuffle(teams)
+            for team in teams:
+                self._mover.clear_circle(
+                    team, spot, self._config.free_kick_distance, "drop ball: free-kick circle"
+                )
         self._emit(EventKind.DROP_BALL, f"drop ball at {_fmt(spot)}")
         self._set_mode("PlayOn")
 
     def _end_game(self) -> None:
         self._emit(EventKind.GAME_OVER, f"game over, {self._score_text()}")
         self._set_mode("GameOver")
+
+    # ---- moving robots -----------------------------------------------------------------------
+
+    def _clear_for_kick_off(self, kicker: Team) -> None:
+        """ClearPlayersBeforeKickOff, which the real server runs every cycle of a kick-off and of
+        the goal pause before it."""
+        if not self._config.start_any_field_position:
+            self._mover.clear_for_kick_off(kicker, self._config.free_kick_distance)
+
+    def _clear_for_set_piece(self, kicker: Team, is_goal_kick: bool) -> None:
+        """The defenders keep the free-kick distance from the spot; at a goal kick the attackers
+        keep out of the kicking team's penalty area instead (the real server's rules)."""
+        if not self._config.clear_set_pieces:
+            return
+        defender = other_team(kicker)
+        if is_goal_kick:
+            self._mover.clear_box(defender, penalty_box(kicker), "goal kick: penalty area")
+        else:
+            self._mover.clear_circle(
+                defender, self._spot, self._config.free_kick_distance, "set piece: free-kick circle"
+            )
 
     # ---- helpers -----------------------------------------------------------------------------
 

@@ -34,7 +34,15 @@ from sim.monitor import (
     parse_trainer_commands,
 )
 from sim.physics import CYCLE_SECONDS, PhysicsWorld
-from sim.referee import BallInfo, Event, PlaceBall, PlayerInfo, Referee, RefereeConfig
+from sim.referee import (
+    BallInfo,
+    Event,
+    MovePlayer,
+    PlaceBall,
+    PlayerInfo,
+    Referee,
+    RefereeConfig,
+)
 from sim.robot import SimRobot
 from sim.scene_graph import MonitorHeader, SceneGraph
 from sim.vision import VisibleRobot, VisionSensor
@@ -133,7 +141,7 @@ class Session:
         self.world = PhysicsWorld(substeps=self.config.substeps or BASE_SUBSTEPS)
         self.field = build_field(self.world)
         self.ball = Ball.create(self.world, (0.0, 0.0, BALL_RADIUS))
-        self.referee = Referee(self.config.referee)
+        self.referee = Referee(self.config.referee, seed=self.config.seed)
         self.scene = SceneGraph()
         self.rng = np.random.default_rng(self.config.seed)
         self.time = 0.0
@@ -491,9 +499,21 @@ class Session:
         for action in actions:
             if isinstance(action, PlaceBall):
                 self.ball.place(action.position)
+            elif isinstance(action, MovePlayer):
+                self._apply_referee_move(action)
             elif isinstance(action, Event):
                 self.events.append(action)
                 log.info("referee: %s", action.text)
+
+    def _apply_referee_move(self, move: MovePlayer) -> None:
+        """The referee's MoveAgent: the robot's torso goes to the new place with its orientation
+        and joint angles, and the base is stopped, as the trainer's ``move`` without an angle
+        does (no velocity is given to it). The robot sees the move in its next perception."""
+        for slot in self.agents.values():
+            if slot.robot is not None and (slot.side, slot.unum) == move.key:
+                slot.robot.translate(*move.position)
+                log.debug("referee moved %s %d: %s", move.team, move.unum, move.reason)
+                return
 
     def _ball_touches(self, robots: list[AgentSlot]) -> list[tuple[str, int]]:
         touching = self.ball.touching_bodies()
