@@ -535,6 +535,7 @@ class Referee:
         self._rng = random.Random(seed)
         self._fouls = PositionalFoulMonitor(self._config)
         self._mover = PlayerMover({}, self._rng, self._config.free_kick_move_distance)
+        self._drop_to_clear: Vec3 | None = None
         self._play_mode = "BeforeKickOff"
         self._mode_time = 0.0
         self._game_time = 0.0
@@ -604,6 +605,11 @@ class Referee:
     def ball_holding(self) -> BallHoldingMonitor:
         """The ball-holding records (read them; the referee updates them)."""
         return self._holding
+
+    @property
+    def set_piece_spot(self) -> Vec3:
+        """Where the current (or last) set piece is taken: the ball's spot."""
+        return self._spot
 
     @property
     def positional_fouls(self) -> PositionalFoulMonitor:
@@ -717,6 +723,7 @@ class Referee:
         self._observe_ball(ball, touched)
         self._check_time()
         self._update_mode(dt, ball, players, touched)
+        self._clear_for_drop_ball()
         self._judge_positions(dt)
         self._previous_ball = self._ball_position
         actions, self._outbox = self._outbox, []
@@ -972,13 +979,7 @@ class Referee:
         around it (in a random order) and play goes on."""
         spot = drop_ball_spot(position)
         self._place_ball(spot)
-        if self._config.clear_set_pieces:
-            teams: list[Team] = list(TEAMS)
-            self._rng.shuffle(teams)
-            for team in teams:
-                self._mover.clear_circle(
-                    team, spot, self._config.free_kick_distance, "drop ball: free-kick circle"
-                )
+        self._drop_to_clear = spot
         self._emit(EventKind.DROP_BALL, f"drop ball at {_fmt(spot)}")
         self._set_mode("PlayOn")
 
@@ -987,6 +988,19 @@ class Referee:
         self._set_mode("GameOver")
 
     # ---- moving robots -----------------------------------------------------------------------
+
+    def _clear_for_drop_ball(self) -> None:
+        """After a drop ball (this cycle or commanded since the last) both teams are cleared
+        from the free-kick circle around it, in a random order."""
+        spot, self._drop_to_clear = self._drop_to_clear, None
+        if spot is None or not self._config.clear_set_pieces:
+            return
+        teams: list[Team] = list(TEAMS)
+        self._rng.shuffle(teams)
+        for team in teams:
+            self._mover.clear_circle(
+                team, spot, self._config.free_kick_distance, "drop ball: free-kick circle"
+            )
 
     def _clear_for_kick_off(self, kicker: Team) -> None:
         """ClearPlayersBeforeKickOff, which the real server runs every cycle of a kick-off and of
