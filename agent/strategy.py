@@ -4,13 +4,20 @@ Kept deliberately small: it decides, behaviours act. Each cycle :meth:`Strategy.
 the world model (perception-fed only) and calls ``Behavior.execute`` with the chosen skill.
 Positions are in the team frame: x towards the opponent goal, own goal at x = -15.
 
-Roles: the player that believes itself closest to the ball (its own estimate against the
-teammates it has seen) is *active* and goes for the ball; the others hold their formation
-places. The active player walks to a point behind the ball on the line to the opponent goal,
-dribbles towards the goal once there and facing it, and shoots with ``basic_kick`` when the
-ball is within kicking range of the goal (:class:`AttackConfig`). A skill that is not
-registered is skipped (the player walks or stands instead), so the strategy runs with whatever
-skills exist.
+Roles (:mod:`agent.roles`): every player says how far it is from the ball (a short ``say``
+message, :func:`~agent.roles.claim_message`) and listens to its teammates' claims; the field
+player with the lowest claim is *active* and goes for the ball, and nobody else does, so a
+team does not converge on the ball in a crowd that knocks itself over. Without claims (a
+teammate that says nothing), the teammates it has seen count. The goalkeeper guards its goal
+line and goes for the ball only when the ball is in front of its goal and it is the closest.
+The others hold their formation places, facing the ball so they keep seeing it.
+
+The active player walks to a point behind the ball on the line to its aim in the opponent goal
+(the middle, or the side away from a goalkeeper it sees), going round the ball first when it
+stands in front of it, dribbles towards the aim once there and facing it, and shoots with
+``basic_kick`` when the ball is within kicking range of the goal (:class:`AttackConfig`). A
+skill that is not registered is skipped (the player walks or stands instead), so the strategy
+runs with whatever skills exist.
 """
 
 from __future__ import annotations
@@ -19,7 +26,8 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from world.field_geometry import HALF_LENGTH
+from agent.roles import ClaimBoard, claim_message, is_closest
+from world.field_geometry import GOAL_WIDTH, HALF_LENGTH
 from world.localization import wrap_deg
 from world.yaml_config import load_yaml_config
 
@@ -27,6 +35,10 @@ from world.yaml_config import load_yaml_config
 BEAM_MODES = ("BeforeKickOff", "Goal_Left", "Goal_Right")
 #: A teammate whose estimate is older than this (s) is not counted in role assignment.
 TEAMMATE_MEMORY_S = 3.0
+#: An opponent seen this recently (s) can be the goalkeeper to shoot past.
+OPPONENT_MEMORY_S = 2.0
+#: Players holding their place face the ball to the nearest multiple of this angle (deg).
+HOLD_HEADING_STEP_DEG = 30.0
 
 
 def _default_formation() -> dict[int, tuple[float, float]]:
@@ -50,8 +62,11 @@ def _default_formation() -> dict[int, tuple[float, float]]:
 class AttackConfig:
     """How the active player brings the ball to the opponent goal (team frame, metres)."""
 
-    #: shoot with ``basic_kick`` once the ball is this close to the goal centre ...
-    kick_range_m: float = 7.0
+    #: shoot with ``basic_kick`` once the ball is this close to the goal centre (0: never,
+    #: dribble it in; without a dribble skill it always kicks) ... The default is 0: the kick
+    #: reaches about 3 m after a slow alignment and falls now and then, and dribbling all the
+    #: way scored faster (benchmarks/attack.py, see config/team.yaml)
+    kick_range_m: float = 0.0
     #: ... but closer than this, walk it in with the dribble (surer than a kick that falls)
     dribble_in_m: float = 2.5
     #: the approach point lies this far behind the ball on the line goal -> ball
@@ -64,15 +79,39 @@ class AttackConfig:
     dribble_keep_m: float = 0.7
     #: which dribble gait: "dfdl" or "lfdl"
     dribble_kind: str = "dfdl"
+    #: a player not behind the ball goes round it, passing this far to its side
+    round_ball_m: float = 0.5
+    #: aim this far from the goal centre, on the side away from a goalkeeper standing within
+    #: ``keeper_near_m`` of the goal centre (0: always aim at the centre)
+    aim_side_m: float = 0.6
+    keeper_near_m: float = 2.5
+
+
+@dataclass(frozen=True)
+class KeeperConfig:
+    """Where the goalkeeper stands and when it leaves its line (team frame, metres)."""
+
+    #: distance in front of the own goal line where it guards
+    line_offset_m: float = 0.7
+    #: it follows the ball sideways by this fraction of the ball's y ...
+    follow_fraction: float = 0.35
+    #: ... up to this far from the centre
+    max_side_m: float = 0.8
+    #: it goes for the ball only while the ball is within this distance of the own goal
+    #: centre (and it is the team's closest player)
+    clear_range_m: float = 4.0
 
 
 @dataclass(frozen=True)
 class StrategyConfig:
-    """Formation places (unum -> x, y in the team frame) and attacking; see
+    """Formation places (unum -> x, y in the team frame), attacking and goalkeeping; see
     ``config/team.yaml``."""
 
     formation: dict[int, tuple[float, float]] = field(default_factory=_default_formation)
     attack: AttackConfig = field(default_factory=AttackConfig)
+    keeper: KeeperConfig = field(default_factory=KeeperConfig)
+    #: the goalkeeper's unum (it guards its goal instead of attacking); None: no goalkeeper
+    goalie_unum: int | None = 1
 
     @classmethod
     def from_yaml(cls, path: str | Path) -> StrategyConfig:
@@ -96,6 +135,33 @@ def opponents_restart(play_mode: str, side: str | None) -> bool:
     return not lower.endswith("_" + side)
 
 
+def approach_point(
+    robot: tuple[float, float],
+    ball: tuple[float, float],
+    aim: tuple[float, float],
+    behind_m: float,
+    round_m: float,
+) -> tuple[float, float]:
+    """Where to walk to get behind the ball on the line ball -> aim.
+
+    A robot that is not behind the ball (level with it or in front, and less than ``round_m``
+    to its side) first walks to a point beside and a little behind it, on its own side: the
+    straight way to the point behind would walk through the ball and knock it back.
+    """
+    bx, by = ball
+    heading = math.atan2(aim[1] - by, aim[0] - bx)
+    ux, uy = math.cos(heading), math.sin(heading)
+    rx, ry = robot[0] - bx, robot[1] - by
+    along, across = rx * ux + ry * uy, -rx * uy + ry * ux
+    if along > -0.5 * behind_m and abs(across) < round_m:
+        side = 1.0 if across >= 0.0 else -1.0
+        return (
+            bx - behind_m * ux - side * round_m * uy,
+            by - behind_m * uy + side * round_m * ux,
+        )
+    return (bx - behind_m * ux, by - behind_m * uy)
+
+
 class Strategy:
     """Formation, beaming and role assignment for one agent."""
 
@@ -104,10 +170,17 @@ class Strategy:
         self._beamed_in_mode: str | None = None
         self._dribbling = False
         self._getting_up = False
+        self._was_active = False
+        self._claims = ClaimBoard()
 
     def decide(self, world, behavior) -> Decision:
-        """Pick this cycle's behaviour (through ``behavior.execute``) and any beam."""
+        """Pick this cycle's behaviour (through ``behavior.execute``), any beam and the claim
+        to say."""
         beam = self._beam(world)
+        self._claims.hear(world)
+        claim = self.claim(world)
+        active = self.is_active(world, claim)
+        self._was_active = False
         if "get_up" in behavior.skill_names and (world.robot.is_fallen or self._getting_up):
             # once started, the get-up runs until it reports the robot standing: halfway up
             # (sitting, torso 50 deg from vertical) the robot no longer counts as fallen, and
@@ -115,27 +188,60 @@ class Strategy:
             self._getting_up = not behavior.execute("get_up")
         elif world.play_mode in BEAM_MODES or world.play_mode == "GameOver":
             behavior.execute("pose", "stand")
-        elif self.is_active(world) and not opponents_restart(world.play_mode, world.side):
+        elif active and not opponents_restart(world.play_mode, world.side):
+            self._was_active = True
             self._go_for_ball(world, behavior)
+        elif self.is_goalie(world):
+            self._guard_goal(world, behavior)
         else:
             self._hold_position(world, behavior)
-        return Decision(beam=beam)
+        say = None if claim is None or world.unum is None else claim_message(world.unum, claim)
+        return Decision(beam=beam, say=say)
 
     # ------------------------------------------------------------------ roles
     def home(self, unum: int | None) -> tuple[float, float]:
         return self.config.formation.get(unum or 0, (-5.0, 0.0))
 
-    def is_active(self, world) -> bool:
-        """Closest to the ball among the teammates this agent knows about."""
+    def is_goalie(self, world) -> bool:
+        return world.unum is not None and world.unum == self.config.goalie_unum
+
+    def claim(self, world) -> float | None:
+        """This player's claim on the ball (lower wins): its distance to the ball, less a
+        little while it is already the active player (so two players at nearly the same
+        distance do not swap every cycle), more while it lies on the ground. None: no claim
+        (ball or own pose unknown, or a goalkeeper whose goal is not threatened)."""
         ball = world.ball.position
-        if ball is None or world.pose is None or world.time is None:
+        if ball is None or world.pose is None:
+            return None
+        if self.is_goalie(world) and not self._ball_threatens_goal(ball):
+            return None
+        distance = math.dist((world.pose.x, world.pose.y), ball)
+        if world.robot.is_fallen or self._getting_up:
+            distance += 2.0
+        if self._was_active:
+            distance -= 0.3
+        return max(distance, 0.0)
+
+    def is_active(self, world, claim: float | None = None) -> bool:
+        """Whether this player goes for the ball: it has the lowest claim among its
+        teammates' recent claims, and is no farther than any teammate it has seen."""
+        if claim is None:
+            claim = self.claim(world)
+        ball = world.ball.position
+        if claim is None or ball is None or world.time is None or world.unum is None:
             return False
-        mine = math.dist((world.pose.x, world.pose.y), ball)
-        return all(
-            math.dist(mate.position, ball) >= mine
+        seen_closer = any(
+            math.dist(mate.position, ball) < claim - 0.3
             for mate in world.teammates.recent(world.time, TEAMMATE_MEMORY_S)
             if mate.unum != world.unum
+            and not self._claims.has(mate.unum, world.time)
+            and mate.unum != self.config.goalie_unum
         )
+        return not seen_closer and is_closest(self._claims, world.unum, claim, world.time)
+
+    def _ball_threatens_goal(self, ball: tuple[float, float]) -> bool:
+        own_goal = (-HALF_LENGTH, 0.0)
+        return math.dist(ball, own_goal) < self.config.keeper.clear_range_m
 
     # ------------------------------------------------------------------ actions
     def _beam(self, world) -> tuple[float, float, float] | None:
@@ -149,32 +255,50 @@ class Strategy:
         x, y = self.home(world.unum)
         return (x, y, 0.0)
 
+    def aim(self, world) -> tuple[float, float]:
+        """The point in the opponent goal to play the ball to: the centre, or the side away
+        from an opponent standing near the goal centre (its goalkeeper)."""
+        attack = self.config.attack
+        goal = (HALF_LENGTH, 0.0)
+        opponents = getattr(world, "opponents", None)
+        if opponents is None or world.time is None or attack.aim_side_m <= 0.0:
+            return goal
+        keeper = opponents.nearest(goal, world.time, OPPONENT_MEMORY_S)
+        if keeper is None or math.dist(keeper.position, goal) > attack.keeper_near_m:
+            return goal
+        side = -1.0 if keeper.position[1] >= 0.0 else 1.0
+        return (HALF_LENGTH, side * min(attack.aim_side_m, GOAL_WIDTH / 2 - 0.2))
+
     def _go_for_ball(self, world, behavior) -> None:
-        """Shoot when in range, dribble when behind the ball facing the goal, else approach."""
+        """Shoot when in range, dribble when behind the ball facing the aim, else approach."""
         skills = behavior.skill_names
         if "walk" not in skills or world.pose is None:
             behavior.execute("pose", "stand")
             return
         attack = self.config.attack
         bx, by = world.ball.position
-        goal_x, goal_y = HALF_LENGTH, 0.0
+        goal_x, goal_y = self.aim(world)
         to_goal = math.atan2(goal_y - by, goal_x - bx)
-        to_goal_m = math.dist((bx, by), (goal_x, goal_y))
-        walk_it_in = "dribble" in skills and to_goal_m < attack.dribble_in_m
-        if "basic_kick" in skills and to_goal_m < attack.kick_range_m and not walk_it_in:
+        to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
+        can_dribble = "dribble" in skills
+        in_range = to_goal_m < attack.kick_range_m and to_goal_m >= attack.dribble_in_m
+        if "basic_kick" in skills and (in_range or not can_dribble):
             self._dribbling = False
             behavior.execute("basic_kick", goal_x, goal_y, "long")
             return
         pose = world.pose
-        approach = (
+        approach = approach_point(
+            (pose.x, pose.y), (bx, by), (goal_x, goal_y), attack.behind_ball_m, attack.round_ball_m
+        )
+        behind = (
             bx - attack.behind_ball_m * math.cos(to_goal),
             by - attack.behind_ball_m * math.sin(to_goal),
         )
         facing = abs(wrap_deg(pose.heading_deg - math.degrees(to_goal)))
-        if "dribble" in skills:
+        if can_dribble:
             near_ball = math.dist((pose.x, pose.y), (bx, by)) < attack.dribble_keep_m
             ready = (
-                math.dist((pose.x, pose.y), approach) < attack.dribble_start_m
+                math.dist((pose.x, pose.y), behind) < attack.dribble_start_m
                 and facing < attack.dribble_align_deg
             )
             self._dribbling = ready or (self._dribbling and near_ball)
@@ -183,9 +307,34 @@ class Strategy:
                 return
         behavior.execute("walk", approach[0], approach[1], math.degrees(to_goal))
 
-    def _hold_position(self, world, behavior) -> None:
-        if "walk" in behavior.skill_names:
-            x, y = self.home(world.unum)
-            behavior.execute("walk", x, y, 0.0)
-        else:
+    def _guard_goal(self, world, behavior) -> None:
+        """Stand in front of the own goal, shifted towards the ball's side, facing the ball."""
+        if "walk" not in behavior.skill_names:
             behavior.execute("pose", "stand")
+            return
+        keeper = self.config.keeper
+        x = -HALF_LENGTH + keeper.line_offset_m
+        ball = world.ball.position
+        if ball is None:
+            behavior.execute("walk", x, 0.0, 0.0)
+            return
+        y = max(-keeper.max_side_m, min(keeper.max_side_m, keeper.follow_fraction * ball[1]))
+        behavior.execute("walk", x, y, _heading_to((x, y), ball))
+
+    def _hold_position(self, world, behavior) -> None:
+        """Walk to the formation place and face the ball there (to keep seeing it)."""
+        if "walk" not in behavior.skill_names:
+            behavior.execute("pose", "stand")
+            return
+        x, y = self.home(world.unum)
+        ball = world.ball.position
+        heading = 0.0 if ball is None else _heading_to((x, y), ball)
+        # in steps of HOLD_HEADING_STEP_DEG: a heading that followed every move of the ball
+        # would keep the walk turning on the spot
+        step = HOLD_HEADING_STEP_DEG
+        behavior.execute("walk", x, y, step * round(heading / step))
+
+
+def _heading_to(origin: tuple[float, float], point: tuple[float, float]) -> float:
+    """Heading (deg) from ``origin`` towards ``point``."""
+    return math.degrees(math.atan2(point[1] - origin[1], point[0] - origin[0]))

@@ -7,7 +7,8 @@ agent sees only its perceptions and acts only through its effectors, exactly as 
 same bytes); nothing helps it along. Per trial: scored or not, game seconds from kick-off to the
 goal, falls.
 
-Run: ``.venv/bin/python benchmarks/attack.py [--trials 5] [--seconds 120] [--type 0] [--seed 0]``;
+Run: ``.venv/bin/python benchmarks/attack.py [--trials 5] [--seconds 120] [--type 0] [--seed 0]
+[--config team.yaml]``;
 prints ``attack_goals``, ``attack_goal_rate``, ``attack_time_to_goal_s_median`` and
 ``attack_falls``.
 """
@@ -23,6 +24,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from agent.agent import Agent, AgentConfig
+from agent.strategy import Strategy, StrategyConfig
+from agent.team import TeamConfig
 from sim.physics import CYCLE_SECONDS
 from sim.session import Session, SessionConfig
 
@@ -38,11 +41,17 @@ class AttackResult:
     falls: int
 
 
-def run_attack(robot_type: int, seed: int, seconds: float, unum: int = 10) -> AttackResult:
+def run_attack(
+    robot_type: int,
+    seed: int,
+    seconds: float,
+    unum: int = 10,
+    strategy: StrategyConfig | None = None,
+) -> AttackResult:
     """One trial; see the module docstring."""
     session = Session(SessionConfig(seed=seed))
     try:
-        agent = Agent(AgentConfig("Attackers", unum, robot_type))
+        agent = Agent(AgentConfig("Attackers", unum, robot_type), Strategy(strategy))
         slot = session.add_agent()
         session.handle_message(slot, agent.greeting())
         for _ in range(PREPARE_CYCLES):
@@ -70,10 +79,12 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=120.0, help="game seconds per trial")
     parser.add_argument("--type", type=int, default=0, help="robot type 0-4")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--config", help="team YAML whose strategy to use (default: built-in)")
     args = parser.parse_args()
+    strategy = TeamConfig.from_yaml(args.config).strategy if args.config else None
     results = []
     for k in range(args.trials):
-        result = run_attack(args.type, args.seed + k, args.seconds)
+        result = run_attack(args.type, args.seed + k, args.seconds, strategy=strategy)
         results.append(result)
         time_text = f"{result.time_to_goal_s:.1f} s" if result.scored else "no goal"
         print(f"# trial {k}: {time_text}, falls {result.falls}", flush=True)

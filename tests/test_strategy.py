@@ -1,5 +1,5 @@
 """The strategy's choices, on stand-in world models (no simulator): who goes for the ball and
-which skill it picks where."""
+which skill it picks where, and the claims players say to settle who goes."""
 
 from __future__ import annotations
 
@@ -8,7 +8,9 @@ from types import SimpleNamespace
 
 import pytest
 
-from agent.strategy import AttackConfig, Strategy, StrategyConfig
+from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
+from agent.strategy import AttackConfig, Strategy, StrategyConfig, approach_point
+from world.perception import Heard
 
 
 class RecordingBehavior:
@@ -23,17 +25,37 @@ class RecordingBehavior:
         return False
 
 
-def world(ball, pose, teammates=(), play_mode="PlayOn", unum=9):
+class Seen:
+    """A stand-in player tracker holding the given observations."""
+
+    def __init__(self, players=()) -> None:
+        self.players = list(players)
+
+    def recent(self, time, memory):
+        return list(self.players)
+
+    def nearest(self, point, time, memory):
+        return min(self.players, key=lambda p: math.dist(p.position, point), default=None)
+
+
+def world(ball, pose, teammates=(), play_mode="PlayOn", unum=9, heard=(), opponents=()):
     return SimpleNamespace(
         play_mode=play_mode,
         side="left",
         unum=unum,
+        team_name="Us",
         time=10.0,
         robot=SimpleNamespace(is_fallen=False),
         ball=SimpleNamespace(position=ball),
         pose=SimpleNamespace(x=pose[0], y=pose[1], heading_deg=pose[2]),
-        teammates=SimpleNamespace(recent=lambda time, memory: list(teammates)),
+        teammates=Seen(teammates),
+        opponents=Seen(opponents),
+        heard=list(heard),
     )
+
+
+def said(unum: int, claim_m: float, team: str = "Us") -> Heard:
+    return Heard(team, 10.0, 30.0, claim_message(unum, claim_m))
 
 
 def test_active_player_approaches_behind_the_ball_facing_the_goal():
@@ -59,28 +81,87 @@ def test_behind_the_ball_and_facing_the_goal_it_dribbles_and_keeps_dribbling():
     assert behavior.calls[-1][0] == "walk"
 
 
-def test_without_a_dribble_skill_it_walks_and_in_range_it_shoots():
+def test_without_a_dribble_skill_it_kicks_anywhere():
     behavior = RecordingBehavior("walk", "basic_kick")
     Strategy().decide(world(ball=(0.0, 0.0), pose=(-0.3, 0.0, 0.0)), behavior)
-    assert behavior.calls[-1][0] == "walk"
-    Strategy().decide(world(ball=(10.0, 1.0), pose=(8.0, 0.0, 0.0)), behavior)
     assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
 
 
-def test_close_to_the_goal_it_walks_the_ball_in_rather_than_kicking():
+def test_by_default_it_dribbles_all_the_way_and_with_a_kick_range_it_shoots_in_range():
     behavior = RecordingBehavior("walk", "dribble", "basic_kick")
-    Strategy().decide(world(ball=(13.0, 0.5), pose=(12.7, 0.5, -5.0)), behavior)
-    assert behavior.calls[-1][:2] == ("dribble", "dfdl")
     Strategy().decide(world(ball=(10.0, 0.5), pose=(9.7, 0.5, 0.0)), behavior)
-    assert behavior.calls[-1][0] == "basic_kick"
+    assert behavior.calls[-1][:2] == ("dribble", "dfdl")
+    shooter = StrategyConfig(attack=AttackConfig(kick_range_m=7.0))
+    Strategy(shooter).decide(world(ball=(10.0, 0.5), pose=(9.7, 0.5, 0.0)), behavior)
+    assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
+    # closer than dribble_in_m it walks the ball in even with a kick range
+    Strategy(shooter).decide(world(ball=(13.0, 0.5), pose=(12.7, 0.5, -5.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "dfdl")
 
 
-def test_a_player_with_a_closer_teammate_holds_its_formation_place():
+def test_a_player_with_a_closer_teammate_holds_its_formation_place_facing_the_ball():
     mate = SimpleNamespace(unum=10, position=(0.5, 0.0))
     behavior = RecordingBehavior("walk", "dribble", "basic_kick")
     strategy = Strategy()
     strategy.decide(world(ball=(0.0, 0.0), pose=(-3.0, -4.5, 0.0), teammates=[mate]), behavior)
-    assert behavior.calls[-1] == ("walk", *strategy.home(9), 0.0)
+    # facing the ball (56 deg) in steps of 30 deg
+    assert behavior.calls[-1] == ("walk", *strategy.home(9), 60.0)
+
+
+def test_a_lower_claim_heard_from_a_teammate_keeps_the_player_back():
+    behavior = RecordingBehavior("walk", "dribble")
+    strategy = Strategy()
+    # nobody seen, but teammate 7 says it is 1.0 m from the ball: this player (2.0 m) holds
+    decision = strategy.decide(world((0.0, 0.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
+    assert behavior.calls[-1][:3] == ("walk", *strategy.home(9))
+    assert parse_claim(decision.say) == (9, 2.0)
+    # the other team's claims do not count
+    strategy = Strategy()
+    claim = said(7, 1.0, team="Them")
+    strategy.decide(world((0.0, 0.0), (-2.0, 0.0, 0.0), heard=[claim]), behavior)
+    assert behavior.calls[-1][0] == "walk"
+    assert behavior.calls[-1][1:3] != strategy.home(9)
+
+
+def test_claims_round_trip_and_ties_go_to_the_lower_number():
+    assert parse_claim(claim_message(7, 4.23)) == (7, 4.2)
+    assert parse_claim("hello") is None
+    assert len(claim_message(11, 1e6)) <= 20
+    board = ClaimBoard()
+    board.hear(world((0, 0), (0, 0, 0), unum=9, heard=[said(7, 4.2), said(8, 5.0)]))
+    assert not is_closest(board, 9, 4.21, now=10.0)  # 4.2 vs 4.2: player 7 has the lower number
+    assert is_closest(board, 6, 4.21, now=10.0)
+    assert is_closest(board, 9, 4.1, now=10.0)
+    assert is_closest(board, 9, 9.0, now=20.0)  # claims older than a second are forgotten
+
+
+def test_the_goalkeeper_guards_its_line_and_clears_a_ball_near_its_goal():
+    behavior = RecordingBehavior("walk", "dribble")
+    keeper = Strategy()
+    decision = keeper.decide(world((0.0, 3.0), (-14.0, 0.0, 0.0), unum=1), behavior)
+    name, x, y, _ = behavior.calls[-1]
+    assert (name, x) == ("walk", pytest.approx(-14.3)) and 0.0 < y <= 0.8
+    assert decision.say is None  # no claim: field players must not wait for the keeper
+    keeper.decide(world((-13.0, 0.5), (-14.0, 0.0, 0.0), unum=1), behavior)
+    assert behavior.calls[-1][0] == "walk"
+    assert behavior.calls[-1][1] > -13.5  # towards the ball, not back to its line
+
+
+def test_a_player_in_front_of_the_ball_goes_round_it():
+    ball, aim = (0.0, 0.0), (15.0, 0.0)
+    x, y = approach_point((1.0, 0.1), ball, aim, behind_m=0.3, round_m=0.5)
+    assert x < 0.0 and y == pytest.approx(0.5)  # beside and behind, on its own side
+    assert approach_point((-2.0, 0.1), ball, aim, 0.3, 0.5) == pytest.approx((-0.3, 0.0))
+
+
+def test_it_aims_away_from_a_goalkeeper_it_sees():
+    keeper = SimpleNamespace(unum=1, position=(14.3, 0.3))
+    behavior = RecordingBehavior("walk", "dribble")
+    strategy = Strategy()
+    scene = world(ball=(10.0, 0.0), pose=(8.0, 0.0, 0.0), opponents=[keeper])
+    assert strategy.aim(scene) == pytest.approx((15.0, -0.6))
+    strategy.decide(scene, behavior)
+    assert behavior.calls[-1][3] == pytest.approx(math.degrees(math.atan2(-0.6, 5.0)))
 
 
 def test_only_a_stand_when_walking_does_not_exist():

@@ -1,0 +1,122 @@
+"""Do matches produce goals? Seeded short matches, k v k, through the real team and strategy.
+
+Each match is ``agent.match.run_match`` (the embedded server and two in-process teams, the same
+bytes as TCP), so everything a full 11 v 11 match runs is exercised; only the number of players
+is smaller, because an 11 v 11 match runs at about 0.3x real time on a 2-core machine. With
+``--players k`` each team fields the first ``k`` places of :data:`LINEUP_ORDER` (the centre
+forward first, then the goalkeeper, ...), renumbered 1..k with the formation places and robot
+types of the full team, so a 3 v 3 is a goalkeeper, a midfielder and a forward on each side.
+
+Run: ``.venv/bin/python benchmarks/match.py [--players 3] [--matches 4] [--duration 60]
+[--seed 0]``; prints one line per match and ``match_goals``, ``match_goals_per_match``,
+``match_with_goal``, ``match_right_team_goals`` (the right team plays the same code: a check
+that the two sides are symmetric), ``match_falls_per_player_minute``,
+``match_realtime_factor``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from agent.match import run_match
+from agent.team import DEFAULT_ROBOT_TYPES, TeamConfig
+
+#: Which formation places (unums of the full team) a smaller team fields, in order.
+LINEUP_ORDER: tuple[int, ...] = (10, 1, 7, 9, 11, 4, 5, 6, 8, 2, 3)
+
+
+def small_team(name: str, players: int, base: TeamConfig | None = None) -> TeamConfig:
+    """A team of ``players`` taking the first places of :data:`LINEUP_ORDER` of ``base``.
+
+    The chosen places keep their full-team order (the goalkeeper stays unum 1 whenever it
+    plays), their formation places and robot types.
+    """
+    base = base or TeamConfig(name)
+    if not 1 <= players <= len(LINEUP_ORDER):
+        raise ValueError(f"players must be 1-{len(LINEUP_ORDER)}, got {players}")
+    places = sorted(LINEUP_ORDER[:players])
+    types = base.robot_types if len(base.robot_types) == 11 else DEFAULT_ROBOT_TYPES
+    formation = {new: base.strategy.formation[old] for new, old in enumerate(places, start=1)}
+    goalie = 1 if 1 in places else None
+    strategy = replace(base.strategy, formation=formation, goalie_unum=goalie)
+    return replace(
+        base,
+        name=name,
+        robot_types=tuple(types[old - 1] for old in places),
+        strategy=strategy,
+    )
+
+
+@dataclass(frozen=True)
+class MatchFigures:
+    score_left: int
+    score_right: int
+    falls: int
+    player_minutes: float
+    realtime_factor: float
+
+
+def play(players: int, seed: int, duration_s: float, base: TeamConfig | None = None):
+    """One seeded match of ``players`` v ``players``; returns its :class:`MatchFigures`."""
+    falls = {"count": 0, "fallen": set()}
+
+    def count_falls(session) -> None:
+        for agent_id, slot in session.agents.items():
+            if slot.robot is None:
+                continue
+            fallen = slot.robot.has_fallen()
+            if fallen and agent_id not in falls["fallen"]:
+                falls["count"] += 1
+            (falls["fallen"].add if fallen else falls["fallen"].discard)(agent_id)
+
+    left = small_team("NaoLeft", players, base)
+    right = small_team("NaoRight", players, base)
+    result = run_match(
+        duration_s, seed, left, right, on_event=lambda text: None, on_cycle=count_falls
+    )
+    return MatchFigures(
+        result.score_left,
+        result.score_right,
+        falls["count"],
+        2 * players * result.game_time / 60.0,
+        result.realtime_factor,
+    )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--players", type=int, default=3, help="players per team, 1-11")
+    parser.add_argument("--matches", type=int, default=4)
+    parser.add_argument("--duration", type=float, default=60.0, help="game seconds per match")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the first match")
+    parser.add_argument("--config", help="team YAML (default: the built-in team)")
+    args = parser.parse_args()
+    base = TeamConfig.from_yaml(args.config) if args.config else None
+    figures = []
+    for k in range(args.matches):
+        f = play(args.players, args.seed + k, args.duration, base)
+        figures.append(f)
+        print(
+            f"# match seed {args.seed + k}: {f.score_left}-{f.score_right}, falls {f.falls}, "
+            f"{f.realtime_factor:.2f}x real time",
+            flush=True,
+        )
+    goals = sum(f.score_left + f.score_right for f in figures)
+    print(f"match_goals: {goals}")
+    print(f"match_goals_per_match: {goals / len(figures):.2f}")
+    with_goal = sum(1 for f in figures if f.score_left + f.score_right)
+    print(f"match_with_goal: {with_goal}/{len(figures)}")
+    print(f"match_right_team_goals: {sum(f.score_right for f in figures)}")
+    minutes = sum(f.player_minutes for f in figures)
+    print(f"match_falls_per_player_minute: {sum(f.falls for f in figures) / minutes:.2f}")
+    rtf = sum(f.realtime_factor for f in figures) / len(figures)
+    print(f"match_realtime_factor: {rtf:.2f}")
+
+
+if __name__ == "__main__":
+    main()
