@@ -10,7 +10,8 @@ support leg extends during the swing (hip and knee straighten), which leans the 
 adds its rotation to the kicking leg's swing, as a human kick does.
 
 Scoring (:func:`evaluate`) runs ``benchmarks.kick.run_trial`` at full strength on both feet with
-the ball a little off its expected place: the score is the median distance (m) minus 5 per fall.
+the ball on its expected place and off it by about a centimetre (:data:`OFFSETS`): the score is
+the mean distance (m) minus 5 per fall.
 The search is a (1 + lambda) evolution strategy from the packaged kick's parameters with the
 step size halved after each generation without improvement.
 
@@ -22,8 +23,10 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import statistics
 import sys
+import time
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -50,9 +53,9 @@ class Parameter:
 
 
 #: name -> range and start value. Angles in degrees (left kick; support = right leg). The start
-#: values are the best of a first search from the hand-made kick (2.2 m at full strength) with
-#: the support hip extended to -10 deg at the end of the swing by hand (3.9 m median of 12 kicks,
-#: no falls; -18 and -25 went further but fell in 1 and 3 of 6).
+#: values are the packaged kick of the second round (``kicks.yaml``: 3.0-3.1 m from a stand, the
+#: swing at ``fast_s`` 0.41 s); ``arm_swing`` moves the arms against the kicking leg during the
+#: swing (the right arm forward, the left back, degrees of shoulder pitch), for balance.
 PARAMETERS: dict[str, Parameter] = {
     "roll": Parameter(8, 20, 13.6),  # hip and ankle roll moving the weight onto the support foot
     "wind_s": Parameter(0.15, 0.5, 0.2),  # duration of the wind-up frame
@@ -62,21 +65,35 @@ PARAMETERS: dict[str, Parameter] = {
     "wind_support_hip": Parameter(-10, 50, 12.7),  # support leg at the end of the wind-up
     "wind_support_knee": Parameter(-70, 0, -39.5),
     "contact_hip": Parameter(10, 70, 41.6),  # kicking leg at the end of the first swing frame
-    "contact_knee": Parameter(-100, -10, -74.0),
+    "contact_knee": Parameter(-110, -10, -95.0),
     "contact_ankle": Parameter(-30, 60, 20.5),
     "end_hip": Parameter(40, 100, 74.3),  # kicking leg at the end of the swing
     "end_knee": Parameter(-60, 0, -12.2),
     "end_ankle": Parameter(-45, 30, -18.7),
-    "end_support_hip": Parameter(-25, 40, -10.0),  # support leg at the end of the swing
+    "end_support_hip": Parameter(-25, 40, 2.0),  # support leg at the end of the swing
     "end_support_knee": Parameter(-60, 0, -31.6),
     "end_support_ankle": Parameter(-20, 60, 19.8),
-    "swing_s": Parameter(0.12, 0.4, 0.314),  # both swing frames together at full strength
+    "swing_s": Parameter(0.2, 0.5, 0.41),  # both swing frames together at full strength
     "contact_share": Parameter(0.3, 0.8, 0.70),  # share of the swing spent on the first frame
     "recover_s": Parameter(0.2, 0.8, 0.3),  # back from the swing to the bent knee
     "stand_s": Parameter(0.4, 1.2, 0.6),  # from there to the stand
+    "arm_swing": Parameter(-40, 40, 0.0),
     "ball_gap_m": Parameter(-0.02, 0.1, 0.024),
     "ball_side_m": Parameter(-0.04, 0.04, -0.003),
 }
+
+#: Swing duration (s) at strength 0 written into every entry (as the packaged kick's).
+SLOW_S = 0.8
+#: Ball placement errors (m along, m outwards) and cycles in the stand before the kick that
+#: every candidate is scored on, each with both feet. Why: after walking and shuffling the ball
+#: lies up to about a centimetre off, and a kick tuned on the exact spot lost 0.7 m with the
+#: ball 1.6 cm further away; the packaged kick went 2.3-3.7 m (one fall) instead of 3.0-3.1 m
+#: when it started 30 or 65 cycles later, while the robot's sway after rising had changed.
+OFFSETS: tuple[tuple[float, float, int], ...] = (
+    (0.0, 0.0, 1),
+    (-0.01, 0.008, 30),
+    (0.012, -0.008, 65),
+)
 
 
 def start_parameters() -> dict[str, float]:
@@ -125,11 +142,12 @@ def kick_entry(p: Mapping[str, float]) -> dict[str, Any]:
             "joints": {
                 **kicking(p["end_hip"], p["end_knee"], p["end_ankle"]),
                 **support(p["end_support_hip"], p["end_support_knee"], p["end_support_ankle"]),
+                **_arms(p.get("arm_swing", 0.0)),
             },
         },
         {
             "duration": round(p["recover_s"], 3),
-            "joints": {**kicking(40, -90, 45), **support(15, -30, 17)},
+            "joints": {**kicking(40, -90, 45), **support(15, -30, 17), **_arms(0.0)},
         },
         {"duration": round(p["stand_s"], 3), "hold": 0.3, "pose": "stand"},
     ]
@@ -138,8 +156,14 @@ def kick_entry(p: Mapping[str, float]) -> dict[str, Any]:
         "ball_gap_m": round(p["ball_gap_m"], 3),
         "ball_side_m": round(p["ball_side_m"], 3),
         "frames": frames,
-        "swing": {"frames": [3, 4], "fast_s": round(swing, 3), "slow_s": 1.0},
+        "swing": {"frames": [3, 4], "fast_s": round(swing, 3), "slow_s": SLOW_S},
     }
+
+
+def _arms(swing: float) -> dict[str, float]:
+    """Shoulder pitches of the stand (-90) with the right arm ``swing`` deg forward and the
+    left one back (a left kick: arms against the legs, as a person kicks)."""
+    return _within_limits({"raj1": -90.0 + swing, "laj1": -90.0 - swing})
 
 
 def _within_limits(angles: Mapping[str, float]) -> dict[str, float]:
@@ -155,30 +179,42 @@ def motions_for(p: Mapping[str, float]) -> dict[str, KickMotion]:
 def evaluate(
     p: Mapping[str, float], seeds: tuple[int, ...] = (1,), robot_type: int = 0
 ) -> tuple[float, list[KickResult]]:
-    """Score (median distance minus fall penalties) of full-strength kicks, both feet."""
+    """Score of full-strength kicks, both feet, the ball at each of :data:`OFFSETS`: the mean
+    distance (a kick that misses counts 0) minus :data:`FALL_PENALTY` per fall. The mean rather
+    than the median, so that a kick that only works on the exact spot scores low."""
     motions = motions_for(p)
-    rng = np.random.default_rng(len(seeds))
     results = [
-        run_trial(foot, 1.0, seed, robot_type, rng.uniform(-0.01, 0.01), motions)
+        run_trial(foot, 1.0, seed, robot_type, gap, motions, side_error=side, wait_cycles=wait)
         for seed in seeds
+        for gap, side, wait in OFFSETS
         for foot in ("left", "right")
     ]
     distances = [r.distance_m if r.time_to_contact_s is not None else 0.0 for r in results]
-    score = statistics.median(distances) - FALL_PENALTY * sum(r.fell for r in results)
+    score = statistics.mean(distances) - FALL_PENALTY * sum(r.fell for r in results)
     return score, results
 
 
 def search(
-    generations: int, offspring: int, step: float, seed: int, robot_type: int
+    generations: int,
+    offspring: int,
+    step: float,
+    seed: int,
+    robot_type: int,
+    minutes: float = math.inf,
 ) -> dict[str, float]:
-    """(1 + lambda) evolution from :func:`start_parameters`; returns the best set found."""
+    """(1 + lambda) evolution from :func:`start_parameters`; returns the best set found once
+    the generations are done or ``minutes`` have passed (checked after every candidate)."""
+    deadline = time.monotonic() + 60.0 * minutes
     rng = np.random.default_rng(seed)
     best = start_parameters()
-    best_score, _ = evaluate(best, robot_type=robot_type)
-    print(f"start: {best_score:.2f}", flush=True)
+    best_score, results = evaluate(best, robot_type=robot_type)
+    shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
+    print(f"start: {best_score:.2f} ({shown})", flush=True)
     for generation in range(generations):
         improved = False
         for _ in range(offspring):
+            if time.monotonic() > deadline:
+                return best
             child = clip(
                 {
                     n: v + rng.normal() * step * (PARAMETERS[n].high - PARAMETERS[n].low)
@@ -203,8 +239,11 @@ def main() -> None:
     parser.add_argument("--step", type=float, default=0.15, help="share of each range")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--robot-type", type=int, default=0)
+    parser.add_argument("--minutes", type=float, default=math.inf, help="time budget")
     args = parser.parse_args()
-    best = search(args.generations, args.offspring, args.step, args.seed, args.robot_type)
+    best = search(
+        args.generations, args.offspring, args.step, args.seed, args.robot_type, args.minutes
+    )
     print(yaml.safe_dump({"parameters": best}, sort_keys=False))
     print(yaml.safe_dump({KICK_LEFT: kick_entry(best)}, sort_keys=False, width=100))
 
