@@ -18,10 +18,15 @@ ground truth (torso position and heading). Per type it prints:
 * the dribbles (``benchmarks/dribble.py``, from the kick-in-motion start: standing 0.3 m behind
   the ball at the centre): ``dfdl_mps[typeN]``, ``lfdl_mps[typeN]``, ball losses, falls,
   holding fouls and the ball-robot distance per phase, over 10 m (3 m with ``--quick``) on
-  three seeds (one with ``--quick``).
+  three seeds (one with ``--quick``);
+* the basic kick (``benchmarks/kick.py``: approach from 0.5-2 m at a random bearing, align,
+  kick 3 m towards a target): ``basic_kick_distance_m[typeN]``,
+  ``basic_kick_direction_error_deg[typeN]`` and ``basic_kick_time_s[typeN]`` (from the decision
+  to kick to the ball leaving the foot), medians over ``--kick-trials`` trials (20; 3 with
+  ``--quick``), with the falls and the trials that never kicked.
 
 Run: ``.venv/bin/python benchmarks/locomotion.py [--quick] [--types 0 1 2 3 4] [--seed 0]
-[--random-seeds 1] [--skip-velocity] [--skip-dribble]``.
+[--random-seeds 1] [--kick-trials 20] [--skip-velocity] [--skip-dribble] [--skip-kick]``.
 """
 
 from __future__ import annotations
@@ -155,6 +160,10 @@ def main() -> None:
     )
     parser.add_argument("--skip-velocity", action="store_true", help="only the random-target runs")
     parser.add_argument("--skip-dribble", action="store_true", help="no DFDL/LFDL runs")
+    parser.add_argument("--skip-kick", action="store_true", help="no basic-kick trials")
+    parser.add_argument(
+        "--kick-trials", type=int, default=None, help="basic-kick trials per type (20; quick: 3)"
+    )
     args = parser.parse_args()
     measure_s = 2.0 if args.quick else 3.0
     random_s = 10.0 if args.quick else 60.0
@@ -176,6 +185,9 @@ def main() -> None:
         sys.stdout.flush()
         if not args.skip_dribble:
             _print_dribbles(robot_type, args.quick, args.seed)
+        if not args.skip_kick:
+            trials = args.kick_trials if args.kick_trials is not None else 3 if args.quick else 20
+            _print_basic_kicks(robot_type, trials, args.seed)
 
 
 def _print_dribbles(robot_type: int, quick: bool, seed: int) -> None:
@@ -188,6 +200,15 @@ def _print_dribbles(robot_type: int, quick: bool, seed: int) -> None:
         runs = [run_dribble(kind, robot_type, distance, seed=s) for s in seeds]
         for line in report_lines(runs):
             print(line, flush=True)
+
+
+def _print_basic_kicks(robot_type: int, trials: int, seed: int) -> None:
+    """Basic-kick figures of ``benchmarks/kick.py`` for one robot type (3 m kicks)."""
+    from benchmarks.kick import basic_kick_figures
+
+    figures = basic_kick_figures(trials, robot_type, 3.0, seed=seed)
+    for name, value in figures.items():
+        print(f"{name}[type{robot_type}]: {value:.3g}", flush=True)
 
 
 if __name__ == "__main__":
