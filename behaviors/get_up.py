@@ -20,9 +20,8 @@ Sequences are looked up per robot type first (``get_up_front_type3``), then by t
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.keyframes import KeyframePlayer, KeyframeSequence, default_sequences, mirrored
@@ -57,82 +56,6 @@ FOLDED_FRAMES = 3
 FRONT_UP_FRAMES = 2
 ABORT_TILT_DEG = 75.0
 ABORT_BACK_DEG = 40.0
-#: The closed-loop rise holds the stand this many cycles at most, waiting for it to carry.
-RISE_HOLD_CYCLES = 15
-
-
-@dataclass(frozen=True)
-class RiseSettings:
-    """The closed-loop rise that ends a get-up: from where the keyframes leave the robot
-    (torso upright over folded legs) into ``stand``, with the ankles balancing on the IMU.
-
-    Why: the keyframes bring the torso upright reliably, but the open-loop squat and stand
-    that followed tipped most robots over forwards or backwards (traces of
-    ``learning/get_up_trace.py``): the momentum left from the motion differs from fall to fall.
-    """
-
-    #: sequences (by side lying on) whose first N frames are played before the rise
-    after_frames: Mapping[str, int] = field(default_factory=dict)
-    duration_s: float = 0.8
-    #: ankle pitch correction (deg) per degree of feet tilt and per deg/s of its rate
-    kp: float = 1.0
-    kd: float = 0.05
-    #: the rise does not advance while the feet tilt more than this (deg)
-    pause_deg: float = 8.0
-    gain: float = 0.5
-    #: a torso tilted more than this when the rise should start: the attempt goes on open-loop
-    max_start_tilt_deg: float = 45.0
-
-
-def kinematic_pitch_deg(joints_deg: Mapping[str, float]) -> float:
-    """Forward lean of the torso the leg joints give with both soles flat on the ground: hip,
-    knee and ankle pitch add up (the hip yaw-pitch joint is left out)."""
-    total = 0.0
-    for side in ("l", "r"):
-        total += sum(joints_deg.get(f"{side}lj{k}", 0.0) for k in (3, 4, 5))
-    return total / 2
-
-
-class BalancedRise:
-    """Targets from a start pose to a goal pose, eased over the rise's duration, with the ankle
-    pitch corrected by how far the feet have tipped (IMU pitch minus the legs' kinematic
-    pitch: positive when the robot rocks onto its toes)."""
-
-    def __init__(
-        self, start: Mapping[str, float], goal: Mapping[str, float], settings: RiseSettings
-    ) -> None:
-        self.start = dict(start)
-        self.goal = dict(goal)
-        self.settings = settings
-        self.progress = 0.0
-        self._last_error: float | None = None
-
-    def step(self, state: RobotState) -> dict[str, float]:
-        """This cycle's targets; advances the rise unless the feet tip too far."""
-        settings = self.settings
-        error = state.pitch_deg - kinematic_pitch_deg(state.joints_deg)
-        rate = 0.0 if self._last_error is None else (error - self._last_error) / CYCLE_SECONDS
-        self._last_error = error
-        if abs(error) < settings.pause_deg:
-            self.progress = min(1.0, self.progress + CYCLE_SECONDS / settings.duration_s)
-        eased = 0.5 - 0.5 * math.cos(math.pi * self.progress)
-        targets = {
-            name: self.start.get(name, goal) + eased * (goal - self.start.get(name, goal))
-            for name, goal in self.goal.items()
-        }
-        correction = settings.kp * error + settings.kd * rate
-        for name in ("llj5", "rlj5"):
-            if name in targets:
-                targets[name] -= correction
-        return targets
-
-    @property
-    def done(self) -> bool:
-        return self.progress >= 1.0
-
-
-#: The rise the skill uses unless it is given another.
-RISE = RiseSettings()
 
 
 def feet_load(state: RobotState) -> float:
@@ -169,12 +92,6 @@ class _Attempt:
     lean_abort_after_s: float | None = None
     settled_cycles: int = 0
     waited_cycles: int = 0
-    #: seconds into the sequence at which the closed-loop rise takes over (None: never) ...
-    rise_after_s: float | None = None
-    #: ... and the rise once it has
-    rise: BalancedRise | None = None
-    #: cycles the rise has held the goal pose without the robot standing
-    rise_hold_cycles: int = 0
 
 
 class GetUpSkill(Skill):
@@ -182,17 +99,12 @@ class GetUpSkill(Skill):
 
     name = "get_up"
 
-    def __init__(
-        self,
-        sequences: Mapping[str, KeyframeSequence] | None = None,
-        rise: RiseSettings | None = None,
-    ) -> None:
+    def __init__(self, sequences: Mapping[str, KeyframeSequence] | None = None) -> None:
         #: where the get-up sequences are looked up: the packaged ones unless a search
         #: (``learning/get_up_search.py``) plays candidates through the real skill
         self.sequences: Mapping[str, KeyframeSequence] = (
             default_sequences() if sequences is None else sequences
         )
-        self.rise_settings = RISE if rise is None else rise
         self._attempt = _Attempt()
         self.attempts = 0
         #: the side the robot was found lying on when the current sequence started
@@ -213,8 +125,6 @@ class GetUpSkill(Skill):
     def step(self, context: SkillContext) -> bool:
         state: RobotState = context.world.robot
         attempt = self._attempt
-        if attempt.rise is not None:
-            return self._rise(context, state)
         if attempt.player is not None:
             return self._play(context, state)
         if robot_stands(state) or (not state.is_fallen and self.attempts == 0):
@@ -251,12 +161,6 @@ class GetUpSkill(Skill):
         else:
             sequence = sequence_for(f"get_up_{side}", state.robot_type, self.sequences)
             player = KeyframePlayer(sequence, state.robot_type)
-            rise_frames = self.rise_settings.after_frames.get(side)
-            rise_after_s = (
-                None
-                if rise_frames is None
-                else sum(frame.total for frame in sequence.frames[:rise_frames])
-            )
             sat_up, folded = (
                 (SAT_UP_FRAMES, FOLDED_FRAMES)
                 if side == "back"
@@ -266,7 +170,6 @@ class GetUpSkill(Skill):
                 player,
                 abort_after_s=sum(frame.total for frame in sequence.frames[:sat_up]),
                 lean_abort_after_s=sum(frame.total for frame in sequence.frames[:folded]),
-                rise_after_s=rise_after_s,
             )
 
     def _play(self, context: SkillContext, state: RobotState) -> bool:
@@ -277,14 +180,6 @@ class GetUpSkill(Skill):
             self._attempt = _Attempt()  # lying again: settle briefly and start over
             self._hold_still(context, state)
             return False
-        if (
-            attempt.rise_after_s is not None
-            and player.elapsed >= attempt.rise_after_s - 1e-9
-            and state.tilt_deg < self.rise_settings.max_start_tilt_deg
-        ):
-            goal = get_pose("stand").for_robot(frozenset(context.commands.joint_names))
-            attempt.rise = BalancedRise(state.joints_deg, goal, self.rise_settings)
-            return self._rise(context, state)
         finished = player.step(context.commands, state.joints_deg)
         if not attempt.rolling and self._in_final_hold(player) and robot_stands(state):
             self._attempt = _Attempt()  # up: the rest of the last hold only keeps the pose
@@ -294,28 +189,6 @@ class GetUpSkill(Skill):
         # the sequence has sent its last targets: standing, or lying again (retry)
         self._attempt = _Attempt()
         return robot_stands(state) and not attempt.rolling
-
-    def _rise(self, context: SkillContext, state: RobotState) -> bool:
-        """The closed-loop rise into ``stand``: done once the robot stands there; given up
-        (and retried from the new posture) when the torso lies again or the goal pose is held
-        RISE_HOLD_CYCLES without standing."""
-        attempt = self._attempt
-        rise = attempt.rise
-        assert rise is not None
-        if state.tilt_deg > ABORT_TILT_DEG:
-            self._attempt = _Attempt()
-            self._hold_still(context, state)
-            return False
-        context.commands.set_targets(rise.step(state), gain=self.rise_settings.gain)
-        if not rise.done:
-            return False
-        if robot_stands(state):
-            self._attempt = _Attempt()
-            return True
-        attempt.rise_hold_cycles += 1
-        if attempt.rise_hold_cycles >= RISE_HOLD_CYCLES:
-            self._attempt = _Attempt()
-        return False
 
     def _fell_back(self, state: RobotState) -> bool:
         """A get-up past its sit-up with the torso lying again or tipping back: it failed."""
