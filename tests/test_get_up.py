@@ -15,7 +15,13 @@ import numpy as np
 import pytest
 import yaml
 
-from behaviors.get_up import SAT_UP_FRAMES, GetUpSkill, robot_stands, sequence_for
+from behaviors.get_up import (
+    FRONT_UP_FRAMES,
+    SAT_UP_FRAMES,
+    GetUpSkill,
+    robot_stands,
+    sequence_for,
+)
 from behaviors.joint_control import CYCLE_SECONDS, JointCommands
 from behaviors.keyframes import (
     Keyframe,
@@ -57,16 +63,18 @@ def test_standing_needs_upright_torso_and_loaded_feet():
     assert not robot_stands(_state((0.0, 6.0, 7.8), 45.0))  # 37 deg forward
 
 
-def test_a_back_attempt_that_stays_down_after_the_sit_up_is_retried_at_once():
-    """A robot that never comes up (the perceived torso stays on its back) starts its second
-    attempt right after the sit-up frames plus the settle wait, not after the whole sequence:
-    that is what lets a retry fit into the 4 s."""
+def _second_attempt_s(side: str, up_frames: int) -> float | None:
+    """Seconds into the first attempt at which a robot that never comes up (the perceived
+    torso keeps lying on ``side``) starts its second one; asserts it started early enough:
+    right after the first ``up_frames`` frames plus the settle wait, not after the whole
+    sequence (that is what lets a retry fit into the 4 s)."""
     world = WorldModel(0)
     commands = JointCommands(0)
     skill = GetUpSkill()
-    sequence = sequence_for("get_up_back", 0)
+    sequence = sequence_for(f"get_up_{side}", 0)
+    gravity_y = 9.81 if side == "back" else -9.81
     lying = Perception(
-        accelerometer=(0.0, 9.81, 0.0), joints=dict.fromkeys(commands.joint_names, 0.0)
+        accelerometer=(0.0, gravity_y, 0.0), joints=dict.fromkeys(commands.joint_names, 0.0)
     )
     for cycle in range(200):  # let the tilt filter converge on the accelerometer
         lying.time = cycle * CYCLE_SECONDS
@@ -80,9 +88,20 @@ def test_a_back_attempt_that_stays_down_after_the_sit_up_is_retried_at_once():
         if skill.attempts == 2:
             second_attempt_s = cycle * CYCLE_SECONDS
             break
-    assert skill.lying_on == "back"
-    sat_up_s = sum(frame.total for frame in sequence.frames[:SAT_UP_FRAMES])
-    assert second_attempt_s is not None and second_attempt_s < sat_up_s + 0.3
+    assert skill.lying_on == side
+    up_s = sum(frame.total for frame in sequence.frames[:up_frames])
+    assert second_attempt_s is not None and second_attempt_s < up_s + 0.3
+    return second_attempt_s
+
+
+def test_a_back_attempt_that_stays_down_after_the_sit_up_is_retried_at_once():
+    _second_attempt_s("back", SAT_UP_FRAMES)
+
+
+def test_a_front_attempt_that_lies_again_once_upright_is_retried_at_once():
+    """Traces showed front attempts that had the torso upright at 0.76 s tip back over in
+    the squat and wait out the 2.8 s sequence; now they retry (from the back) at once."""
+    _second_attempt_s("front", FRONT_UP_FRAMES)
 
 
 def test_sequences_are_looked_up_per_type_then_shared():
