@@ -15,9 +15,9 @@ What the real server does, and this module reproduces:
 - ``ClearPlayers(box)``: a robot whose rectangle overlaps the box is put in front of the box's
   edge on its own side, ``d`` from [FreeKickMoveDist, 2 FreeKickMoveDist] away.
 - Before kick-off both teams are kept in their own halves (a robot counts as in the other half
-  when its whole footprint is past the centre line). At a kick-off, and in the goal pause
-  before it, the non-kicking team is kept out of the kicker's half and the centre circle, and
-  the kicking team out of the opponents' half except for robots wholly inside the circle.
+  as soon as any part of its footprint is past the centre line). At a kick-off, and in the goal
+  pause before it, the non-kicking team is kept out of the kicker's half and the centre circle,
+  and the kicking team out of the opponents' half except for robots wholly inside the circle.
 - Kick-ins, corners and free kicks clear the defending team from the free-kick circle around
   the ball; a goal kick clears the attackers from the defenders' penalty area; a drop ball
   clears both teams from the circle. When the ball is first put on its spot, robots of the
@@ -262,16 +262,18 @@ class PlayerMover:
     def keep_in_halves(self) -> None:
         """UpdateBeforeKickOff: each team is kept out of the other's half.
 
-        Here a robot is in the other half when its whole footprint is past the centre line; the
-        real server moves it as soon as any part of its bounding box is, so it also moves a
-        robot standing on the line. The leniency lets a robot the trainer stands on the line
-        stay there (tests place robots so) while it sways by millimetres."""
+        As on the real server, a robot is in the other half as soon as any part of its
+        footprint is past the centre line, so a robot standing on the line is moved too."""
         teams: list[Team] = ["left", "right"]
         self._rng.shuffle(teams)
         for team in teams:
             for key in self._team(team):
                 x, y, z = self._positions[key]
-                if (x > PLAYER_HALF_EXTENT) if team == "left" else (x < -PLAYER_HALF_EXTENT):
+                if (
+                    (x + PLAYER_HALF_EXTENT > 0.0)
+                    if team == "left"
+                    else (x - PLAYER_HALF_EXTENT < 0.0)
+                ):
                     d = self._rng.uniform(self._move_distance, 2.0 * self._move_distance)
                     self.move(key, (-d if team == "left" else d, y, z), "before kick-off: own half")
 

@@ -166,7 +166,7 @@ def test_teammates_and_opponents_on_the_field(session):
     model = WorldModel(0)  # no team name: learnt from the own arms
     _run(session, {me: model}, 3)
     _place(session, "Left", 1, -3.0, 0.0, 0.0)
-    _place(session, "Left", 2, 0.0, 1.5, 90.0)
+    _place(session, "Left", 2, -0.5, 1.5, 90.0)
     _place(session, "Right", 3, 1.0, -1.0, 180.0)
     _run(session, {me: model}, 40)
     assert model.team_name == "Alpha"
