@@ -65,10 +65,12 @@ __all__ = [
     "DribbleGait",
     "DribbleInputs",
     "DribbleSkill",
+    "ball_in_front",
     "ball_within_reach",
     "dribble_gait",
     "dribble_velocity",
     "dribble_walk_parameters",
+    "recovery_velocity",
 ]
 
 DRIBBLE_FILE = Path(__file__).resolve().parent / "data" / "dribble.yaml"
@@ -124,6 +126,12 @@ class DribbleGait:
     side_slowdown: float = 0.1
     #: ... or as the heading error reaches this many degrees
     heading_slowdown_deg: float = 60.0
+    #: a ball nearer than reach_min_ahead (beside or behind the robot) is walked round
+    #: (:func:`recovery_velocity`): the robot keeps this far from it sideways while passing ...
+    recover_clearance: float = 0.2
+    #: ... at this speed (m/s) at most, m/s per metre of way left
+    recover_speed: float = 0.3
+    recover_gain: float = 2.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -162,6 +170,15 @@ def ball_within_reach(inputs: DribbleInputs, gait: DribbleGait) -> bool:
     return ahead_ok and abs(inputs.ball_y - gait.ball_side) <= gait.reach_side
 
 
+def ball_in_front(inputs: DribbleInputs, gait: DribbleGait) -> bool:
+    """The ball lies in front of the robot, where the dribble's forward law can take it: at
+    least ``reach_min_ahead`` ahead of the torso centre, and the further off the gait's line
+    sideways (beyond ``reach_side``), the further ahead too (a ball 0.2 m to the side at the
+    height of the toes is not walked at diagonally, it is walked round)."""
+    off_line = max(0.0, abs(inputs.ball_y - gait.ball_side) - gait.reach_side)
+    return inputs.ball_x >= gait.reach_min_ahead + off_line
+
+
 def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, float, float]:
     """The walk command (vx m/s, vy m/s, vturn deg/s) that keeps the ball on the gait's line.
 
@@ -175,6 +192,8 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     or the heading is wrong, plus a catch-up term (a share of the ball's forward error and,
     once it lies beyond ``ball_ahead``, of its own forward speed).
     """
+    if not ball_in_front(inputs, gait):  # beside or behind: walk round it first
+        return recovery_velocity(inputs, gait)
     error = inputs.heading_error_deg
     turn_deg = _clip(gait.turn_gain * error, gait.max_turn_deg)
     beyond = max(0.0, abs(error) - gait.placement_deadband_deg)
@@ -191,9 +210,41 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     if ahead_error > 0.0:  # following a ball that is nearer than wanted would tread on it
         catch_up += gait.follow_gain * max(inputs.ball_vx, 0.0)
     catch_up *= max(facing, gait.turning_catch_up_share)
-    if inputs.ball_x < 0.0:  # the ball is behind: never walk on over it
-        catch_up = gait.min_speed
     vx = min(max(base + catch_up, gait.min_speed), gait.max_speed)
+    calm = _calm_share(inputs.tilt_deg, gait)
+    return vx * calm, vy * calm, turn_deg * calm
+
+
+def recovery_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, float, float]:
+    """The walk command that brings a ball lying beside or behind the robot back in front
+    (not :func:`ball_in_front`).
+
+    Why: the dribble's law only ever walks forwards; a ball that slipped past a foot would
+    be left behind for good (the dribble stalled). Here the robot heads for its dribbling
+    place, ``ball_ahead`` behind the ball along the direction to dribble, while turning to
+    that direction. If the straight way there passes the ball (the robot is not yet behind
+    it), it first heads for a point ``recover_clearance`` beside the ball on its own side,
+    so that it walks round the ball instead of through it. Speeds are capped at
+    ``recover_speed`` forwards and backwards and ``max_side_speed`` sideways: slow steps,
+    since a foot meeting the ball sideways trips the robot.
+    """
+    error = math.radians(inputs.heading_error_deg)
+    ux, uy = math.cos(error), math.sin(error)  # the direction to dribble, ego frame
+    bx, by = inputs.ball_x, inputs.ball_y
+    # where the robot stands along the direction, measured from the ball (negative: behind)
+    behind = -(bx * ux + by * uy)
+    # the robot's side of the line through the ball along the direction (+1: its left)
+    side = 1.0 if (ux * -by - uy * -bx) >= 0.0 else -1.0
+    offset = gait.ball_side  # the gait's line lies ball_side to the left of the ball's
+    if behind < -0.5 * gait.ball_ahead:  # already behind the ball: straight to the place
+        gx = bx - gait.ball_ahead * ux + offset * uy
+        gy = by - gait.ball_ahead * uy - offset * ux
+    else:  # beside it, half a place back: the ball stays clear of the feet
+        gx = bx - 0.5 * gait.ball_ahead * ux - side * gait.recover_clearance * uy
+        gy = by - 0.5 * gait.ball_ahead * uy + side * gait.recover_clearance * ux
+    vx = _clip(gait.recover_gain * gx, gait.recover_speed)
+    vy = _clip(gait.recover_gain * gy, gait.max_side_speed)
+    turn_deg = _clip(gait.turn_gain * inputs.heading_error_deg, gait.max_turn_deg)
     calm = _calm_share(inputs.tilt_deg, gait)
     return vx * calm, vy * calm, turn_deg * calm
 

@@ -14,10 +14,12 @@ from behaviors.dribble import (
     DribbleInputs,
     DribbleSkill,
     _mirrored_robot,
+    ball_in_front,
     ball_within_reach,
     dribble_gait,
     dribble_velocity,
     dribble_walk_parameters,
+    recovery_velocity,
 )
 from behaviors.joint_control import JointCommands
 from behaviors.mirror import mirror_joint_angles
@@ -58,8 +60,35 @@ def test_ball_rolled_ahead_speeds_up_and_out_of_reach_only_catches_up():
 
 
 def test_ball_behind_never_walks_on_over_it():
+    """A ball behind the torso is walked round: backwards, never forwards away from it."""
     vx, _, _ = dribble_velocity(_inputs(-0.1), GAIT)
-    assert vx == pytest.approx(GAIT.min_speed)
+    assert vx < 0.0
+
+
+@pytest.mark.parametrize("sign", (1.0, -1.0))
+def test_ball_beside_is_walked_round_on_its_own_side(sign):
+    """A ball beside the robot (level with the torso): the robot steps back and away from it,
+    so that its feet pass the ball with room to spare, then comes in behind it."""
+    beside = _inputs(0.0, sign * 0.12)
+    assert not ball_in_front(beside, GAIT)
+    vx, vy, turn = dribble_velocity(beside, GAIT)
+    assert vx < 0.0
+    assert vy * sign < 0.0  # away from the ball's side
+    assert turn == pytest.approx(0.0)
+    behind_it = _inputs(0.15, sign * 0.2)  # off to the side, a little ahead: step in behind it
+    assert not ball_in_front(behind_it, GAIT)
+    vx, vy, _ = recovery_velocity(behind_it, GAIT)
+    assert -0.15 < vx <= 0.0
+    assert vy * sign > 0.0
+
+
+def test_ball_in_front_window():
+    assert ball_in_front(_inputs(GAIT.ball_ahead, GAIT.ball_side), GAIT)
+    assert not ball_in_front(_inputs(GAIT.reach_min_ahead - 0.01), GAIT)
+    # off the line, the ball must lie further ahead to count as in front
+    off = GAIT.reach_side + 0.1
+    assert not ball_in_front(_inputs(GAIT.reach_min_ahead + 0.05, off), GAIT)
+    assert ball_in_front(_inputs(GAIT.reach_min_ahead + 0.15, off), GAIT)
 
 
 def test_turning_left_steps_right_to_orbit_the_ball():
@@ -335,6 +364,32 @@ def test_episode_start_is_reproducible_and_stops_at_the_chosen_phase():
     assert _episode_end(4, (6, True)) == first
     cycles, _, _ = _episode_end(4, (2, False))
     assert 25 <= cycles < 25 + 16
+
+
+@pytest.mark.parametrize("kind", DRIBBLE_KINDS)
+def test_a_ball_that_rolled_behind_is_walked_round_and_dribbled_on(kind):
+    """The ball rolls at the standing robot from 0.6 m ahead, passes its side and stops about
+    0.3 m behind it (seen on its way, so the world model knows where it went). Dribbling on
+    towards 0 deg, the robot walks round it and takes it forward again, without falling
+    (before, the dribble only ever walked forwards and left the ball behind)."""
+    session, agent = start_dribble_episode(0, 0.0, seed=0)
+    try:
+        tx, ty, _ = agent.robot.torso_position()
+        agent.trainer(f"(ball (pos {tx + 0.6:.3f} {ty + 0.15:.3f} 0.042) (vel -1.4 0 0))")
+        for _ in range(150):  # it rolls 1.3 m in all, 0.06 m/s left after 3 s
+            agent.run("pose", "stand")
+        rest = np.array(session.ball.position())
+        assert rest[0] < tx - 0.1  # it lies behind the torso
+        in_front = False
+        for _ in range(250):
+            agent.run("dribble", kind, 0.0, "left")
+            assert not agent.robot.has_fallen()
+            bx, _, _ = session.ball.position()
+            in_front = in_front or bx > agent.robot.torso_position()[0] + 0.1
+        assert in_front
+        assert session.ball.position()[0] - rest[0] > 0.1  # taken forward again
+    finally:
+        session.close()
 
 
 def test_type4_dribble_keeps_the_ball_rolling():
