@@ -10,7 +10,8 @@ player with the lowest claim is *active* and goes for the ball, and nobody else 
 team does not converge on the ball in a crowd that knocks itself over. Without claims (a
 teammate that says nothing), the teammates it has seen count. The goalkeeper guards its goal
 line and goes for the ball only when the ball is in front of its goal and it is the closest.
-The others hold their formation places, facing the ball so they keep seeing it.
+The others hold their formation places, facing the ball so they keep seeing it. A player that
+has not seen the ball for a few seconds turns on the spot until it sees it again.
 
 The active player walks to a point behind the ball on the line to its aim in the opponent goal
 (the middle, or the side away from a goalkeeper it sees), going round the ball first when it
@@ -37,6 +38,11 @@ BEAM_MODES = ("BeforeKickOff", "Goal_Left", "Goal_Right")
 TEAMMATE_MEMORY_S = 3.0
 #: An opponent seen this recently (s) can be the goalkeeper to shoot past.
 OPPONENT_MEMORY_S = 2.0
+#: A ball not seen for this long (s) is lost: the player stops trusting the estimate (it may
+#: have been kicked away unseen) and turns on the spot until it sees the ball again.
+BALL_LOST_S = 3.0
+#: Turning speed (deg/s) while searching for the ball.
+SEARCH_TURN_DEG_S = 40.0
 #: Players holding their place face the ball to the nearest multiple of this angle (deg).
 HOLD_HEADING_STEP_DEG = 30.0
 
@@ -85,6 +91,11 @@ class AttackConfig:
     #: ``keeper_near_m`` of the goal centre (0: always aim at the centre)
     aim_side_m: float = 0.6
     keeper_near_m: float = 2.5
+    #: an opponent within ``dodge_ahead_m`` ahead of the ball and ``dodge_across_m`` of the
+    #: dribble line turns the dribble ``dodge_deg`` away from it (0: never)
+    dodge_ahead_m: float = 1.8
+    dodge_across_m: float = 0.7
+    dodge_deg: float = 35.0
 
 
 @dataclass(frozen=True)
@@ -133,6 +144,35 @@ def opponents_restart(play_mode: str, side: str | None) -> bool:
     if side is None or lower == "playon" or not lower.endswith(("_left", "_right")):
         return False
     return not lower.endswith("_" + side)
+
+
+def ball_lost(world) -> bool:
+    """Whether the ball has gone unseen for :data:`BALL_LOST_S` or was never seen."""
+    ball = world.ball
+    return ball.position is None or getattr(ball, "time_since_seen", 0.0) > BALL_LOST_S
+
+
+def dodge_heading(
+    ball: tuple[float, float],
+    heading_deg: float,
+    opponents: list[tuple[float, float]],
+    attack: AttackConfig,
+) -> float:
+    """The dribble heading (deg): ``heading_deg``, turned ``attack.dodge_deg`` away from the
+    nearest opponent standing in the way ahead of the ball (dribbling into a robot loses the
+    ball or knocks both over)."""
+    h = math.radians(heading_deg)
+    ux, uy = math.cos(h), math.sin(h)
+    nearest: tuple[float, float] | None = None
+    for ox, oy in opponents:
+        rx, ry = ox - ball[0], oy - ball[1]
+        along, across = rx * ux + ry * uy, -rx * uy + ry * ux
+        in_way = 0.0 < along < attack.dodge_ahead_m and abs(across) < attack.dodge_across_m
+        if in_way and (nearest is None or along < nearest[0]):
+            nearest = (along, across)
+    if nearest is None:
+        return heading_deg
+    return heading_deg - math.copysign(attack.dodge_deg, nearest[1] if nearest[1] else 1.0)
 
 
 def approach_point(
@@ -188,6 +228,9 @@ class Strategy:
             self._getting_up = not behavior.execute("get_up")
         elif world.play_mode in BEAM_MODES or world.play_mode == "GameOver":
             behavior.execute("pose", "stand")
+        elif ball_lost(world) and "walk_velocity" in behavior.skill_names:
+            self._dribbling = False
+            behavior.execute("walk_velocity", 0.0, 0.0, SEARCH_TURN_DEG_S)
         elif active and not opponents_restart(world.play_mode, world.side):
             self._was_active = True
             self._go_for_ball(world, behavior)
@@ -211,7 +254,7 @@ class Strategy:
         distance do not swap every cycle), more while it lies on the ground. None: no claim
         (ball or own pose unknown, or a goalkeeper whose goal is not threatened)."""
         ball = world.ball.position
-        if ball is None or world.pose is None:
+        if ball is None or world.pose is None or ball_lost(world):
             return None
         if self.is_goalie(world) and not self._ball_threatens_goal(ball):
             return None
@@ -303,9 +346,18 @@ class Strategy:
             )
             self._dribbling = ready or (self._dribbling and near_ball)
             if self._dribbling:
-                behavior.execute("dribble", attack.dribble_kind, math.degrees(to_goal), "left")
+                heading = dodge_heading(
+                    (bx, by), math.degrees(to_goal), self._opponent_positions(world), attack
+                )
+                behavior.execute("dribble", attack.dribble_kind, heading, "left")
                 return
         behavior.execute("walk", approach[0], approach[1], math.degrees(to_goal))
+
+    def _opponent_positions(self, world) -> list[tuple[float, float]]:
+        opponents = getattr(world, "opponents", None)
+        if opponents is None or world.time is None:
+            return []
+        return [p.position[:2] for p in opponents.recent(world.time, OPPONENT_MEMORY_S)]
 
     def _guard_goal(self, world, behavior) -> None:
         """Stand in front of the own goal, shifted towards the ball's side, facing the ball."""

@@ -17,6 +17,7 @@ that the two sides are symmetric), ``match_falls_per_player_minute``,
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -61,11 +62,27 @@ class MatchFigures:
     realtime_factor: float
 
 
-def play(players: int, seed: int, duration_s: float, base: TeamConfig | None = None):
-    """One seeded match of ``players`` v ``players``; returns its :class:`MatchFigures`."""
+def play(
+    players: int,
+    seed: int,
+    duration_s: float,
+    base: TeamConfig | None = None,
+    trace_every_s: float = 0.0,
+) -> MatchFigures:
+    """One seeded match of ``players`` v ``players``; returns its :class:`MatchFigures`.
+    With ``trace_every_s`` it prints the referee's events and, that often, the ball's place
+    and the play mode (to see where a match got stuck)."""
     falls = {"count": 0, "fallen": set()}
+    trace_cycles = round(trace_every_s / 0.02)
 
     def count_falls(session) -> None:
+        if trace_cycles and session.cycle % trace_cycles == 0:
+            x, y, _ = session.ball.position()
+            near = _players_near(session, (x, y), 1.5)
+            print(
+                f"#   t {session.referee.game_time:6.1f} ball {x:6.2f} {y:6.2f} "
+                f"{session.referee.play_mode} fallen {len(falls['fallen'])} near {' '.join(near)}"
+            )
         for agent_id, slot in session.agents.items():
             if slot.robot is None:
                 continue
@@ -76,9 +93,8 @@ def play(players: int, seed: int, duration_s: float, base: TeamConfig | None = N
 
     left = small_team("NaoLeft", players, base)
     right = small_team("NaoRight", players, base)
-    result = run_match(
-        duration_s, seed, left, right, on_event=lambda text: None, on_cycle=count_falls
-    )
+    events = print if trace_cycles else (lambda text: None)
+    result = run_match(duration_s, seed, left, right, on_event=events, on_cycle=count_falls)
     return MatchFigures(
         result.score_left,
         result.score_right,
@@ -88,6 +104,19 @@ def play(players: int, seed: int, duration_s: float, base: TeamConfig | None = N
     )
 
 
+def _players_near(session, point: tuple[float, float], radius: float) -> list[str]:
+    """``L7@0.42``: team initial (of NaoLeft/NaoRight), unum and distance of each robot
+    within ``radius`` of ``point``."""
+    near = []
+    for slot in session.agents.values():
+        if slot.robot is None:
+            continue
+        distance = math.dist(slot.robot.torso_position()[:2], point)
+        if distance < radius:
+            near.append(f"{(slot.team_name or '???')[3:4]}{slot.unum}@{distance:.2f}")
+    return near
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--players", type=int, default=3, help="players per team, 1-11")
@@ -95,11 +124,17 @@ def main() -> None:
     parser.add_argument("--duration", type=float, default=60.0, help="game seconds per match")
     parser.add_argument("--seed", type=int, default=0, help="seed of the first match")
     parser.add_argument("--config", help="team YAML (default: the built-in team)")
+    parser.add_argument(
+        "--trace",
+        type=float,
+        default=0.0,
+        help="print events and the ball's place every this many game seconds (0: off)",
+    )
     args = parser.parse_args()
     base = TeamConfig.from_yaml(args.config) if args.config else None
     figures = []
     for k in range(args.matches):
-        f = play(args.players, args.seed + k, args.duration, base)
+        f = play(args.players, args.seed + k, args.duration, base, args.trace)
         figures.append(f)
         print(
             f"# match seed {args.seed + k}: {f.score_left}-{f.score_right}, falls {f.falls}, "

@@ -9,7 +9,13 @@ from types import SimpleNamespace
 import pytest
 
 from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
-from agent.strategy import AttackConfig, Strategy, StrategyConfig, approach_point
+from agent.strategy import (
+    AttackConfig,
+    Strategy,
+    StrategyConfig,
+    approach_point,
+    dodge_heading,
+)
 from world.perception import Heard
 
 
@@ -193,3 +199,24 @@ def test_a_started_get_up_runs_until_it_reports_standing():
     assert [call[0] for call in behavior.calls] == ["get_up"] * 3
     strategy.decide(sitting, behavior)
     assert behavior.calls[-1][0] == "walk"
+
+
+def test_the_dribble_turns_away_from_an_opponent_in_the_way():
+    attack = AttackConfig()
+    assert dodge_heading((0.0, 0.0), 0.0, [(1.0, 0.2)], attack) == pytest.approx(-35.0)
+    assert dodge_heading((0.0, 0.0), 0.0, [(1.0, -0.2)], attack) == pytest.approx(35.0)
+    # behind the ball, far ahead or well to the side: no dodge
+    assert dodge_heading((0.0, 0.0), 0.0, [(-0.5, 0.0), (3.0, 0.0), (1.0, 1.5)], attack) == 0.0
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    rival = SimpleNamespace(unum=10, position=(1.2, 0.3))
+    strategy.decide(world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival]), behavior)
+    assert behavior.calls[-1][:3] == ("dribble", "dfdl", pytest.approx(-35.0))
+
+
+def test_a_player_that_lost_the_ball_turns_to_find_it_and_claims_nothing():
+    behavior = RecordingBehavior("walk", "walk_velocity", "dribble")
+    lost = world((0.0, 0.0), (-1.0, 0.0, 0.0))
+    lost.ball.time_since_seen = 5.0
+    decision = Strategy().decide(lost, behavior)
+    assert behavior.calls[-1][0] == "walk_velocity" and behavior.calls[-1][3] > 0.0
+    assert decision.say is None
