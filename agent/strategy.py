@@ -83,6 +83,9 @@ class AttackConfig:
     dribble_align_deg: float = 25.0
     #: keep dribbling while the ball stays within this distance of the torso
     dribble_keep_m: float = 0.7
+    #: stop dribbling when the ball is this close to the torso: the robot is over it (it
+    #: can no longer see it, and standing on it draws the ball-holding foul)
+    dribble_min_m: float = 0.12
     #: which dribble gait: "dfdl" or "lfdl"
     dribble_kind: str = "dfdl"
     #: a player not behind the ball goes round it, passing this far to its side
@@ -91,6 +94,13 @@ class AttackConfig:
     #: ``keeper_near_m`` of the goal centre (0: always aim at the centre)
     aim_side_m: float = 0.6
     keeper_near_m: float = 2.5
+    #: when the ball has moved less than ``stall_m`` in ``stall_s`` of going for it (two
+    #: players pushing it against each other), take it ``escape_deg`` off the line to the
+    #: aim, towards the side of fewer opponents, for ``escape_s`` (0 s: never)
+    stall_s: float = 4.0
+    stall_m: float = 0.35
+    escape_deg: float = 70.0
+    escape_s: float = 3.0
     #: an opponent within ``dodge_ahead_m`` ahead of the ball and ``dodge_across_m`` of the
     #: dribble line turns the dribble ``dodge_deg`` away from it (0: never)
     dodge_ahead_m: float = 1.8
@@ -202,6 +212,29 @@ def approach_point(
     return (bx - behind_m * ux, by - behind_m * uy)
 
 
+class StallWatch:
+    """Notices when the ball stays put while the player goes for it: both sides then push it
+    against each other, and the referee's ball-holding rule does not end it."""
+
+    def __init__(self) -> None:
+        self._since: float | None = None
+        self._where: tuple[float, float] | None = None
+
+    def reset(self) -> None:
+        self._since = self._where = None
+
+    def stalled(self, now: float, ball: tuple[float, float], window_s: float, still_m: float):
+        """Record the ball at ``now``; True once it has stayed within ``still_m`` of where it
+        was ``window_s`` or more ago (then the watch starts over)."""
+        if self._where is None or math.dist(ball, self._where) > still_m:
+            self._since, self._where = now, ball
+            return False
+        if now - self._since >= window_s:
+            self.reset()
+            return True
+        return False
+
+
 class Strategy:
     """Formation, beaming and role assignment for one agent."""
 
@@ -212,6 +245,10 @@ class Strategy:
         self._getting_up = False
         self._was_active = False
         self._claims = ClaimBoard()
+        self._stall = StallWatch()
+        #: until when (world time) and which way (+1 left, -1 right) the ball is taken off
+        #: the line to the aim to get out of a stall
+        self._escape: tuple[float, float] | None = None
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``), any beam and the claim
@@ -220,6 +257,8 @@ class Strategy:
         self._claims.hear(world)
         claim = self.claim(world)
         active = self.is_active(world, claim)
+        if not self._was_active:
+            self._stall.reset()
         self._was_active = False
         if "get_up" in behavior.skill_names and (world.robot.is_fallen or self._getting_up):
             # once started, the get-up runs until it reports the robot standing: halfway up
@@ -320,7 +359,7 @@ class Strategy:
             return
         attack = self.config.attack
         bx, by = world.ball.position
-        goal_x, goal_y = self.aim(world)
+        goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
         to_goal = math.atan2(goal_y - by, goal_x - bx)
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
         can_dribble = "dribble" in skills
@@ -339,7 +378,8 @@ class Strategy:
         )
         facing = abs(wrap_deg(pose.heading_deg - math.degrees(to_goal)))
         if can_dribble:
-            near_ball = math.dist((pose.x, pose.y), (bx, by)) < attack.dribble_keep_m
+            gap = math.dist((pose.x, pose.y), (bx, by))
+            near_ball = attack.dribble_min_m < gap < attack.dribble_keep_m
             ready = (
                 math.dist((pose.x, pose.y), behind) < attack.dribble_start_m
                 and facing < attack.dribble_align_deg
@@ -352,6 +392,39 @@ class Strategy:
                 behavior.execute("dribble", attack.dribble_kind, heading, "left")
                 return
         behavior.execute("walk", approach[0], approach[1], math.degrees(to_goal))
+
+    def _escape_aim(
+        self, world, ball: tuple[float, float], aim: tuple[float, float]
+    ) -> tuple[float, float]:
+        """``aim``, or while escaping a stall a point 5 m from the ball ``escape_deg`` off the
+        line to ``aim``. A stall counts only while the player is at the ball."""
+        attack = self.config.attack
+        now = world.time or 0.0
+        at_ball = math.dist((world.pose.x, world.pose.y), ball) < attack.dribble_keep_m
+        if not at_ball or attack.stall_s <= 0.0:
+            self._stall.reset()  # walking up to a ball that lies still is no stall
+        elif self._escape is None and self._stall.stalled(
+            now, ball, attack.stall_s, attack.stall_m
+        ):
+            self._escape = (now + attack.escape_s, self._escape_side(world, ball))
+        if self._escape is None:
+            return aim
+        until, side = self._escape
+        if now >= until:
+            self._escape = None
+            return aim
+        heading = math.atan2(aim[1] - ball[1], aim[0] - ball[0])
+        heading += side * math.radians(attack.escape_deg)
+        return (ball[0] + 5.0 * math.cos(heading), ball[1] + 5.0 * math.sin(heading))
+
+    def _escape_side(self, world, ball: tuple[float, float]) -> float:
+        """+1 (to the left, team frame y up) or -1: away from the opponents near the ball,
+        else towards the middle of the field."""
+        near = [p for p in self._opponent_positions(world) if math.dist(p, ball) < 1.5]
+        if near:
+            mean_y = sum(p[1] for p in near) / len(near)
+            return -1.0 if mean_y > ball[1] else 1.0
+        return -1.0 if ball[1] > 0.0 else 1.0
 
     def _opponent_positions(self, world) -> list[tuple[float, float]]:
         opponents = getattr(world, "opponents", None)

@@ -220,3 +220,34 @@ def test_a_player_that_lost_the_ball_turns_to_find_it_and_claims_nothing():
     decision = Strategy().decide(lost, behavior)
     assert behavior.calls[-1][0] == "walk_velocity" and behavior.calls[-1][3] > 0.0
     assert decision.say is None
+
+
+def test_a_ball_pushed_against_an_opponent_for_seconds_is_taken_off_sideways():
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    rival = SimpleNamespace(unum=3, position=(0.4, 0.3))  # ahead, a little to the left
+    scene = world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival])
+    headings = []
+    for k in range(260):  # 5.2 s at the ball, which does not move
+        scene.time = 10.0 + 0.02 * k
+        strategy.decide(scene, behavior)
+        headings.append(behavior.calls[-1][-2] if behavior.calls[-1][0] == "dribble" else None)
+    assert headings[0] == pytest.approx(-35.0)  # the dodge first
+    assert min(h for h in headings if h is not None) < -60.0  # then away to the right
+
+
+def test_walking_up_to_a_still_ball_is_no_stall():
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    scene = world((0.0, 0.0), (-5.0, 0.0, 0.0))
+    for k in range(300):
+        scene.time = 10.0 + 0.02 * k
+        strategy.decide(scene, behavior)
+    assert behavior.calls[-1] == ("walk", pytest.approx(-0.3), pytest.approx(0.0), 0.0)
+
+
+def test_a_dribbler_that_ends_up_over_the_ball_steps_off_it():
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    strategy.decide(world((0.0, 0.0), (-0.3, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][0] == "dribble"
+    strategy.decide(world((0.0, 0.0), (-0.05, 0.02, 0.0)), behavior)
+    name, _, y, _ = behavior.calls[-1]
+    assert name == "walk" and abs(y) == pytest.approx(0.5)  # round the ball, not over it
