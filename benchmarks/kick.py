@@ -415,16 +415,30 @@ def basic_kicks(trials: int, robot_type: int, asked: float | str) -> None:
             print(f"{name}{label}: {value:.2f}")
 
 
+#: Cycles in the stand between the ball's placement and the kick, one per stand-kick start
+#: (``--seeds`` of them): the kick's distance depends on the robot's small sway after rising,
+#: as after a walk, so the calibration samples several starts rather than one.
+STAND_KICK_WAITS = (1, 30, 65, 15, 45, 90)
+
+
 def stand_kicks(seeds: int, robot_type: int, strengths: list[float]) -> None:
-    """``kick`` from a stand with the ball placed at the foot: distance per strength."""
+    """``kick`` from a stand with the ball placed at the foot: distance per strength, over
+    ``seeds`` starts (:data:`STAND_KICK_WAITS`, the ball up to 1 cm off along and 5 mm
+    across) and both feet."""
     rng = np.random.default_rng(0)
     results = []
     for strength in strengths:
         mine = []
         for seed in range(seeds):
+            wait = STAND_KICK_WAITS[seed % len(STAND_KICK_WAITS)]
             for foot in ("left", "right"):
                 error = rng.uniform(-0.01, 0.01)  # placement a little off
-                mine.append(run_trial(foot, strength, seed, robot_type, error))
+                side = rng.uniform(-0.005, 0.005)
+                mine.append(
+                    run_trial(
+                        foot, strength, seed, robot_type, error, side_error=side, wait_cycles=wait
+                    )
+                )
         results += mine
         print(f"kick_distance_m[strength={strength:g}]: "
               f"{statistics.median(r.distance_m for r in mine):.2f}")  # fmt: skip
