@@ -98,6 +98,9 @@ class AttackConfig:
     #: players pushing it against each other), take it ``escape_deg`` off the line to the
     #: aim, towards the side of fewer opponents, for ``escape_s`` (0 s: never)
     stall_s: float = 4.0
+    #: ... except within this distance of the goal centre (a keeper or defender blocking
+    #: the way in), where a stall is answered with ``basic_kick`` at the goal instead
+    stall_shot_m: float = 4.0
     stall_m: float = 0.35
     escape_deg: float = 70.0
     escape_s: float = 3.0
@@ -249,6 +252,8 @@ class Strategy:
         #: until when (world time) and which way (+1 left, -1 right) the ball is taken off
         #: the line to the aim to get out of a stall
         self._escape: tuple[float, float] | None = None
+        #: a stall shot has started: basic_kick runs to its end while this player is active
+        self._shooting = False
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``), any beam and the claim
@@ -259,6 +264,8 @@ class Strategy:
         active = self.is_active(world, claim)
         if not self._was_active:
             self._stall.reset()
+        if not active:
+            self._shooting = False
         self._was_active = False
         if "get_up" in behavior.skill_names and (world.robot.is_fallen or self._getting_up):
             # once started, the get-up runs until it reports the robot standing: halfway up
@@ -364,9 +371,10 @@ class Strategy:
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
         can_dribble = "dribble" in skills
         in_range = to_goal_m < attack.kick_range_m and to_goal_m >= attack.dribble_in_m
-        if "basic_kick" in skills and (in_range or not can_dribble):
+        if "basic_kick" in skills and (in_range or not can_dribble or self._shooting):
             self._dribbling = False
-            behavior.execute("basic_kick", goal_x, goal_y, "long")
+            finished = behavior.execute("basic_kick", goal_x, goal_y, "long")
+            self._shooting = self._shooting and not finished
             return
         pose = world.pose
         approach = approach_point(
@@ -406,7 +414,10 @@ class Strategy:
         elif self._escape is None and self._stall.stalled(
             now, ball, attack.stall_s, attack.stall_m
         ):
-            self._escape = (now + attack.escape_s, self._escape_side(world, ball))
+            if math.dist(ball, (HALF_LENGTH, 0.0)) < attack.stall_shot_m:
+                self._shooting = True
+            else:
+                self._escape = (now + attack.escape_s, self._escape_side(world, ball))
         if self._escape is None:
             return aim
         until, side = self._escape

@@ -251,3 +251,16 @@ def test_a_dribbler_that_ends_up_over_the_ball_steps_off_it():
     strategy.decide(world((0.0, 0.0), (-0.05, 0.02, 0.0)), behavior)
     name, _, y, _ = behavior.calls[-1]
     assert name == "walk" and abs(y) == pytest.approx(0.5)  # round the ball, not over it
+
+
+def test_a_stall_near_the_goal_is_answered_with_a_shot_that_runs_to_its_end():
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble", "basic_kick")
+    keeper = SimpleNamespace(unum=1, position=(14.2, 0.0))
+    scene = world((12.5, 0.0), (12.2, 0.0, 0.0), opponents=[keeper])
+    for k in range(260):
+        scene.time = 10.0 + 0.02 * k
+        strategy.decide(scene, behavior)
+    assert behavior.calls[-1][0] == "basic_kick"
+    scene.ball.position = (12.9, 0.1)  # the ball moved while the kick lines up: still kicking
+    strategy.decide(scene, behavior)
+    assert behavior.calls[-1][0] == "basic_kick"
