@@ -81,7 +81,8 @@ def play(
             near = _players_near(session, (x, y), 1.5)
             print(
                 f"#   t {session.referee.game_time:6.1f} ball {x:6.2f} {y:6.2f} "
-                f"{session.referee.play_mode} fallen {len(falls['fallen'])} near {' '.join(near)}"
+                f"{session.referee.play_mode} fallen {len(falls['fallen'])} near {' '.join(near)}",
+                flush=True,
             )
         for agent_id, slot in session.agents.items():
             if slot.robot is None:
@@ -93,7 +94,11 @@ def play(
 
     left = small_team("NaoLeft", players, base)
     right = small_team("NaoRight", players, base)
-    events = print if trace_cycles else (lambda text: None)
+
+    def events(text: str) -> None:
+        if trace_cycles:
+            print(text, flush=True)
+
     result = run_match(duration_s, seed, left, right, on_event=events, on_cycle=count_falls)
     return MatchFigures(
         result.score_left,
