@@ -77,11 +77,16 @@ PARAMETERS: dict[str, Parameter] = {
     "contact_share": Parameter(0.3, 0.8, 0.70),  # share of the swing spent on the first frame
     "recover_s": Parameter(0.2, 0.8, 0.3),  # back from the swing to the bent knee
     "stand_s": Parameter(0.4, 1.2, 0.6),  # from there to the stand
+    # below 0.05: none; else seconds to put the kicking foot down beside the support foot,
+    # the weight still on the support leg, before the return to the stand shifts it back
+    "land_s": Parameter(0.0, 0.6, 0.3),
     "arm_swing": Parameter(-40, 40, 0.0),
     "ball_gap_m": Parameter(-0.02, 0.1, 0.024),
     "ball_side_m": Parameter(-0.04, 0.04, -0.003),
 }
 
+#: Shorter ``land_s`` means no landing frame.
+LAND_MIN_S = 0.05
 #: Swing duration (s) at strength 0 written into every entry (as the packaged kick's).
 SLOW_S = 0.8
 #: Ball placement errors (m along, m outwards) and cycles in the stand before the kick that
@@ -157,6 +162,9 @@ def kick_entry(p: Mapping[str, float]) -> dict[str, Any]:
         },
         {"duration": round(p["stand_s"], 3), "hold": 0.3, "pose": "stand"},
     ]
+    if p.get("land_s", 0.0) >= LAND_MIN_S:
+        land = {"joints": {**kicking(15, -30, 17), **support(15, -30, 17)}}
+        frames.insert(-1, {"duration": round(p["land_s"], 3), "hold": 0.1, **land})
     return {
         "description": "left-foot kick found by learning/kick_search.py",
         "ball_gap_m": round(p["ball_gap_m"], 3),
