@@ -226,7 +226,9 @@ class StallWatch:
     def reset(self) -> None:
         self._since = self._where = None
 
-    def stalled(self, now: float, ball: tuple[float, float], window_s: float, still_m: float):
+    def stalled(
+        self, now: float, ball: tuple[float, float], window_s: float, still_m: float
+    ) -> bool:
         """Record the ball at ``now``; True once it has stayed within ``still_m`` of where it
         was ``window_s`` or more ago (then the watch starts over)."""
         if self._where is None or math.dist(ball, self._where) > still_m:
