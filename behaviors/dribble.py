@@ -17,6 +17,8 @@ is within reach (:func:`ball_within_reach`), faster when it rolled ahead, slower
 off the line. Turning, the robot steps sideways as it turns so that it orbits the ball instead
 of leaving it behind ("walking around the ball's side"); for a sharp turn the ball's wanted
 place turns with the new direction, so the robot circles the ball rather than crossing it.
+A ball that slipped beside or behind the robot (not :func:`ball_in_front`) is walked round
+(:func:`recovery_velocity`) before the dribble goes on.
 
 Right-footed versions (``foot="right"``) are never written out: the left-footed controller runs
 on mirrored inputs (ball, heading error, gyro, tilt, joint angles) and its joint speeds and
@@ -100,6 +102,9 @@ class DribbleGait:
     #: forward speed bounds: slowest (may be negative) and fastest, when catching up
     min_speed: float = 0.0
     max_speed: float = 0.6
+    #: forward speed (m/s) while the ball lies beyond reach_max_ahead, before the catch-up
+    #: terms (0: only they bring the robot back to a ball that rolled off)
+    beyond_reach_speed: float = 0.0
     #: m/s of extra forward speed per metre the ball lies beyond ball_ahead
     ahead_gain: float = 2.0
     #: share of the ball's own forward speed added (a kicked ball runs off: follow it at once)
@@ -126,6 +131,12 @@ class DribbleGait:
     side_slowdown: float = 0.1
     #: ... or as the heading error reaches this many degrees
     heading_slowdown_deg: float = 60.0
+    #: steering at a ball that lies off the line, ahead: the heading aims this share of the
+    #: ball's bearing from the gait's line, at most pursuit_max_deg (0: off, the robot only
+    #: steps sideways). Why: stepping sideways costs forward speed (the walk shares its step
+    #: limits), while a few degrees of heading bring the robot back on the line as it walks
+    pursuit_share: float = 0.0
+    pursuit_max_deg: float = 0.0
     #: a ball nearer than reach_min_ahead (beside or behind the robot) is walked round
     #: (:func:`recovery_velocity`): the robot keeps this far from it sideways while passing ...
     recover_clearance: float = 0.2
@@ -196,6 +207,7 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
         return recovery_velocity(inputs, gait)
     error = inputs.heading_error_deg
     turn_deg = _clip(gait.turn_gain * error, gait.max_turn_deg)
+    pursuit_deg = _pursuit_deg(inputs, gait)
     beyond = max(0.0, abs(error) - gait.placement_deadband_deg)
     angle = math.radians(math.copysign(min(beyond, gait.max_placement_deg), error))
     ux, uy = math.cos(angle), math.sin(angle)
@@ -203,9 +215,15 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     side_error = inputs.ball_y - (gait.ball_ahead * uy + gait.ball_side * ux)
     orbit = -math.radians(turn_deg) * max(inputs.ball_x, 0.0)
     vy = _clip(gait.side_gain * side_error + orbit, gait.max_side_speed)
+    turn_deg = _clip(turn_deg + gait.turn_gain * pursuit_deg, gait.max_turn_deg)
     aligned = max(0.0, 1.0 - abs(side_error) / gait.side_slowdown)
     facing = max(0.0, 1.0 - abs(error) / gait.heading_slowdown_deg)
-    base = gait.speed * aligned * facing if ball_within_reach(inputs, gait) else 0.0
+    if ball_within_reach(inputs, gait):
+        base = gait.speed * aligned * facing
+    elif inputs.ball_x > gait.reach_max_ahead:  # rolled off ahead: follow it
+        base = gait.beyond_reach_speed * facing
+    else:
+        base = 0.0
     catch_up = gait.ahead_gain * ahead_error
     if ahead_error > 0.0:  # following a ball that is nearer than wanted would tread on it
         catch_up += gait.follow_gain * max(inputs.ball_vx, 0.0)
@@ -213,6 +231,16 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     vx = min(max(base + catch_up, gait.min_speed), gait.max_speed)
     calm = _calm_share(inputs.tilt_deg, gait)
     return vx * calm, vy * calm, turn_deg * calm
+
+
+def _pursuit_deg(inputs: DribbleInputs, gait: DribbleGait) -> float:
+    """Extra heading (deg, + = left) towards a ball ahead that lies off the gait's line: a
+    share of its bearing from the line's point under the torso, capped; only while the
+    heading is roughly right (turning to a new direction has its own law)."""
+    if gait.pursuit_share <= 0.0 or abs(inputs.heading_error_deg) > gait.placement_deadband_deg:
+        return 0.0
+    bearing = math.degrees(math.atan2(inputs.ball_y - gait.ball_side, max(inputs.ball_x, 0.1)))
+    return _clip(gait.pursuit_share * bearing, gait.pursuit_max_deg)
 
 
 def recovery_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, float, float]:

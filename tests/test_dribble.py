@@ -107,6 +107,21 @@ def test_a_sharp_turn_circles_the_ball_instead_of_walking_through_it():
     assert abs(vy) > 0.5 * abs(vx)
 
 
+def test_pursuit_turns_towards_a_ball_off_the_line_instead_of_stepping_sideways():
+    """With pursuit on, a ball ahead-left turns the robot left (no orbit step to the right
+    for it); with it off the robot only steps left."""
+    ball_left = _inputs(0.3, 0.05)
+    _, vy_off, turn_off = dribble_velocity(ball_left, GAIT)
+    assert turn_off == pytest.approx(0.0) and vy_off > 0.0
+    gait = replace(GAIT, pursuit_share=1.0, pursuit_max_deg=5.0)
+    _, vy_on, turn_on = dribble_velocity(ball_left, gait)
+    assert turn_on == pytest.approx(GAIT.turn_gain * 5.0)  # capped at pursuit_max_deg
+    assert vy_on == pytest.approx(vy_off)
+    # turning to a new direction (beyond the dead band) has its own law: no pursuit
+    turning = DribbleInputs(0.3, 0.05, 0.0, 0.0, 40.0)
+    assert dribble_velocity(turning, gait) == pytest.approx(dribble_velocity(turning, GAIT))
+
+
 def test_a_near_rolling_ball_is_not_chased():
     """A ball nearer than ball_ahead is not followed at its speed: the robot would tread on it."""
     gait = replace(GAIT, follow_gain=1.0)
