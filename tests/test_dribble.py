@@ -82,6 +82,21 @@ def test_ball_beside_is_walked_round_on_its_own_side(sign):
     assert vy * sign > 0.0
 
 
+def test_a_ball_far_behind_is_walked_to_facing_the_way():
+    """Half a metre and more away, the robot turns towards its way round the ball and walks
+    it forwards (sidestepping that far takes seconds); it does not step off before facing it."""
+    vx, vy, turn = recovery_velocity(_inputs(-0.8, 0.0), GAIT)
+    assert turn == pytest.approx(GAIT.max_turn_deg)  # the way lies behind-left: turn left
+    assert vx == pytest.approx(0.0, abs=1e-9)
+    assert vy == pytest.approx(0.0, abs=1e-9)
+    # the direction to dribble lies behind, the ball 0.8 m ahead: walk on to pass it by its
+    # side (here its right), nearly straight ahead
+    vx, vy, turn = recovery_velocity(DribbleInputs(0.8, 0.0, 0.0, 0.0, 180.0), GAIT)
+    assert vx > 0.8 * GAIT.recover_speed
+    assert vy == pytest.approx(0.0, abs=1e-9)
+    assert -30.0 < turn < 0.0
+
+
 def test_ball_in_front_window():
     assert ball_in_front(_inputs(GAIT.ball_ahead, GAIT.ball_side), GAIT)
     assert not ball_in_front(_inputs(GAIT.reach_min_ahead - 0.01), GAIT)
