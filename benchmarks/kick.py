@@ -3,7 +3,9 @@
 Stand kicks: one robot in an in-process :class:`~sim.session.Session` beamed to (-1, 0) facing +x
 rises slowly into ``stand``; the trainer puts the ball (at rest) where the kick expects it
 (``ball_gap_m`` ahead of the kicking foot's toe, ``ball_side_m`` outwards, from ``kicks.yaml``)
-and sets PlayOn. From then on the agent side runs alone through perception bytes
+and sets PlayOn; the robot stands 1-90 cycles more (one of :data:`STAND_KICK_WAITS` per seed:
+the kick is sensitive to the small sway left after rising, as after a walk). From then on the
+agent side runs alone through perception bytes
 (``learning.local_agent.LocalAgent``) with ``execute("kick", foot, strength)`` until the skill
 finishes, then holds ``stand`` for three seconds while the ball rolls out. Measured from the
 simulator: how far the ball went, its direction against the robot's facing, whether the robot
@@ -16,13 +18,18 @@ Basic kicks: the same standing robot, the ball 0.5-2 m away at a random bearing,
 travel from where it lay when the kick hit it, direction error against the target, falls, and
 the time from the first ``basic_kick`` cycle to the ball moving (walking included).
 
+Impact (``--impact``): stand kicks that also record the kicking foot's speed in the cycle before
+the ball moves, the ball's speed just after and the leg's joint speeds (where the power goes).
+
 Run: ``.venv/bin/python benchmarks/kick.py [--seeds 3] [--robot-type 0] [--strengths ...]
-[--basic-trials 20] [--basic-distance 3|long]``; prints ``kick_distance_m[strength=S]``
-(median over seeds and both feet), ``kick_direction_error_deg_median``, ``kick_falls``,
-``kick_time_s`` (median), then ``basic_kick_distance_m``, ``basic_kick_direction_error_deg``,
+[--basic-trials 20] [--basic-distance 3|long] [--impact]``; prints
+``kick_distance_m[strength=S]`` (median over seeds and both feet),
+``kick_direction_error_deg_median``, ``kick_falls``, ``kick_time_s`` (median), then
+:func:`basic_kick_figures`: ``basic_kick_distance_m``, ``basic_kick_direction_error_deg``,
 ``basic_kick_time_s`` (medians over the trials that kicked), ``basic_kick_falls`` and
-``basic_kick_not_kicked``. ``--strengths`` with no value skips the stand kicks,
-``--basic-trials 0`` the basic ones.
+``basic_kick_misses``. ``--strengths`` with no value skips the stand kicks, ``--basic-trials 0``
+the basic ones; ``--impact`` prints ``kick_foot_speed_m_s``, ``kick_ball_speed_m_s``,
+``kick_speed_ratio`` per strength instead.
 """
 
 from __future__ import annotations
