@@ -5,6 +5,8 @@ changes WOULD buy (measured here, not adopted).
     .venv/bin/python benchmarks/physics.py --split         # Bullet's own timers, 22 robots
     .venv/bin/python benchmarks/physics.py --variants      # speed, stance, fidelity per variant
     .venv/bin/python benchmarks/physics.py --variant iters15 --pytest tests/test_walk.py -q
+    .venv/bin/python benchmarks/physics.py --variant strike --contact   # ball bounce and roll
+    .venv/bin/python benchmarks/physics.py --variant strike --run benchmarks/kick.py --impact
 
 ``cycles_per_s``: each cycle does what the server does per robot: new joint speeds, one world
 step, sensor update, joint angles, gyro, accelerometer and foot pressure.
@@ -19,6 +21,12 @@ robots (``step_ms[...]``), whether an idle robot of type 0 and 4 still stands st
 A variant is applied by patching the module constants that the world reads when it is built
 (``sim.physics.SOLVER_ITERATIONS``, ``sim.session.BASE_SUBSTEPS``) or by setting an engine
 parameter on every new world, so the committed physics stays as it is.
+
+``strike`` (and ``rigid``, the same without the bounce) moves the soft-contact parameters from
+the robot links to the ground (see :func:`_strike`): robot-ground contacts stay as tuned, the
+foot-ball and robot-robot contacts become rigid, and the foot-ball contact bounces at 0.8 as on
+the real server. ``--contact`` prints the ball's own figures under a variant (bounce on the
+ground, roll distances); ``--run SCRIPT ARGS`` runs any benchmark script inside the variant.
 """
 
 from __future__ import annotations
@@ -26,9 +34,11 @@ from __future__ import annotations
 import argparse
 import collections
 import contextlib
+import dataclasses
 import json
 import math
 import re
+import runpy
 import sys
 import tempfile
 import time
@@ -39,10 +49,14 @@ import pybullet
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+import sim.field
 import sim.physics
+import sim.robot
 import sim.session
-from sim.physics import PhysicsWorld
+from sim.field import Ball, GroundPhysics, build_field
+from sim.physics import CYCLE_SECONDS, PhysicsWorld
 from sim.robot import SimRobot
+from world.field_geometry import BALL_RADIUS
 
 TRACES = Path(__file__).resolve().parents[2] / "shared" / "reference" / "rcssserver3d-traces"
 
@@ -199,7 +213,7 @@ def _engine_parameter(**params: float) -> Callable[[], contextlib.AbstractContex
 
 
 def _constant(
-    module: object, name: str, value: int
+    module: object, name: str, value: object
 ) -> Callable[[], contextlib.AbstractContextManager]:
     """A variant that changes a module constant the world reads when it is built."""
 
@@ -215,12 +229,69 @@ def _constant(
     return apply
 
 
+#: Restitution of robot links in ``strike``. Bullet multiplies the two bodies' restitutions,
+#: so with robot r, ball 0.8 / r and ground r, foot-ball and ball-ground are 0.8 while
+#: robot-robot and robot-ground are r^2 (0.01: no bounce; Bullet does not clamp one body's
+#: value above 1, only products matter).
+STRIKE_ROBOT_RESTITUTION = 0.1
+#: The real server's minimum bounce velocity (ball contact, nao-model-facts.md); Bullet's own
+#: threshold (restitutionVelocityThreshold) is 0.2 m/s and applies to every contact.
+STRIKE_MIN_BOUNCE_SPEED = 0.8
+
+
+def _strike(bounce: bool = True) -> Callable[[], contextlib.AbstractContextManager]:
+    """The softness of the ground contact moved from the robots onto the ground.
+
+    Bullet makes a contact soft when EITHER body has soft-contact parameters (stiffness in
+    series, damping summed), so the robots' 1000 N/m, 80 N s/m made the foot-ball contact a
+    heavily over-damped spring on a 26 g ball: the foot pushes the ball instead of striking it.
+    Robots without soft parameters on a ground with them keep the very same robot-ground
+    contact (1000 N/m in series with a rigid body's 1e30, 80 + 0.1 N s/m) while foot-ball and
+    robot-robot become rigid. With ``bounce`` the restitutions are chosen so that the foot-ball
+    contact bounces at 0.8 like the real server's (ball bounce 0.8, robot bounce off, ODE takes
+    the one that is set), ball-ground and ball-post stay 0.8, and robot-robot/robot-ground are
+    0.01; without, the robot links keep restitution 0 (foot-ball 0).
+    """
+
+    @contextlib.contextmanager
+    def apply() -> Iterator[None]:
+        robot_r = STRIKE_ROBOT_RESTITUTION if bounce else 0.0
+        ball = sim.field.DEFAULT_BALL
+        ball_r = ball.restitution / STRIKE_ROBOT_RESTITUTION if bounce else ball.restitution
+        ground_r = ball.restitution / ball_r
+        robot = sim.robot.DEFAULT_PHYSICS
+        ground = GroundPhysics(
+            restitution=ground_r,
+            contact_stiffness=robot.contact_stiffness,
+            contact_damping=robot.contact_damping,
+        )
+        patches = (
+            _constant(
+                sim.robot,
+                "DEFAULT_PHYSICS",
+                dataclasses.replace(robot, soft_contacts=False, restitution=robot_r),
+            ),
+            _constant(sim.field, "DEFAULT_GROUND", ground),
+            _constant(sim.field, "DEFAULT_BALL", dataclasses.replace(ball, restitution=ball_r)),
+            _constant(sim.field, "POST_RESTITUTION", sim.field.POST_RESTITUTION * ground_r),
+            _engine_parameter(restitutionVelocityThreshold=STRIKE_MIN_BOUNCE_SPEED),
+        )
+        with contextlib.ExitStack() as stack:
+            for patch in patches:
+                stack.enter_context(patch())
+            yield
+
+    return apply
+
+
 VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "current": contextlib.nullcontext,
     "iters20": _constant(sim.physics, "SOLVER_ITERATIONS", 20),
     "iters15": _constant(sim.physics, "SOLVER_ITERATIONS", 15),
     "substeps1": _constant(sim.session, "BASE_SUBSTEPS", 1),
     "dantzig": _engine_parameter(constraintSolverType=pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG),
+    "strike": _strike(bounce=True),
+    "rigid": _strike(bounce=False),
 }
 
 
@@ -312,6 +383,51 @@ def report_variant(name: str, cycles: int, checks: bool = True) -> None:
             print(f"fidelity_{check}[{name}]: {int(passed)}", flush=True)
 
 
+def ball_rebound(drop_height: float = 1.0) -> float:
+    """Height of a dropped ball's first rebound over its drop height (centre above its rest
+    height), on the field the current physics builds: e^2 for a restitution e, less what the
+    contact's softness absorbs."""
+    world = PhysicsWorld(substeps=sim.field.DEFAULT_SUBSTEPS)
+    try:
+        build_field(world)
+        ball = Ball.create(world, (0.0, 0.0, BALL_RADIUS + drop_height))
+        rising, peak = False, BALL_RADIUS
+        for _ in range(round(3.0 / CYCLE_SECONDS)):
+            world.step_cycle()
+            vz = ball.velocity()[2]
+            rising = rising or vz > 0.0
+            if rising:
+                peak = max(peak, ball.position()[2])
+                if vz < 0.0:
+                    break
+    finally:
+        world.close()
+    return (peak - BALL_RADIUS) / drop_height
+
+
+def report_contact(name: str) -> None:
+    """The ball's figures under variant ``name``: rebound and rolls (real server: 2.71 m at
+    4 m/s, 5.42 m at 8 m/s, nao-model-facts.md)."""
+    from benchmarks.ball import roll
+
+    with VARIANTS[name]():
+        print(f"ball_rebound_ratio[{name},drop=1m]: {ball_rebound():.3f}", flush=True)
+        for speed in (4.0, 8.0):
+            distance, rest = roll(speed)
+            print(f"ball_roll_distance_m[{name},v={speed:g}]: {distance:.3f}")
+            print(f"ball_rest_time_s[{name},v={speed:g}]: {rest:.2f}", flush=True)
+
+
+def run_script(name: str, script: list[str]) -> None:
+    """Run a benchmark script (path, then its arguments) inside variant ``name``."""
+    path = Path(script[0]).resolve()
+    sys.argv = [str(path), *script[1:]]
+    sys.path.insert(0, str(path.parent))
+    print(f"# variant: {name}", flush=True)
+    with VARIANTS[name]():
+        runpy.run_path(str(path), run_name="__main__")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cycles", type=int, default=500)
@@ -319,10 +435,20 @@ def main() -> None:
     parser.add_argument("--variants", action="store_true", help="every variant in VARIANTS")
     parser.add_argument("--variant", choices=sorted(VARIANTS), help="one variant")
     parser.add_argument("--speed-only", action="store_true", help="variants: no stance/fidelity")
+    parser.add_argument("--contact", action="store_true", help="ball rebound and rolls")
     parser.add_argument(
         "--pytest", nargs=argparse.REMAINDER, metavar="ARG", help="run pytest in --variant (last)"
     )
+    parser.add_argument(
+        "--run", nargs=argparse.REMAINDER, metavar="SCRIPT", help="a script in --variant (last)"
+    )
     args = parser.parse_args()
+    if args.run:
+        run_script(args.variant or "current", args.run)
+        return
+    if args.contact:
+        report_contact(args.variant or "current")
+        return
     if args.pytest:
         import pytest
 

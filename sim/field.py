@@ -67,6 +67,44 @@ WALL_BOXES: tuple[tuple[Vec3, Vec3], ...] = (
 
 #: Lateral friction of the ground. Bullet multiplies the two bodies' coefficients.
 GROUND_FRICTION = 1.0
+
+
+@dataclass(frozen=True)
+class GroundPhysics:
+    """Material of the ground plane. Bullet multiplies the two bodies' friction and restitution.
+
+    By default the ground is rigid (no soft-contact parameters) and the robots carry the
+    softness of the real server's ground contact (``sim.robot.RobotPhysics``).
+    ``contact_stiffness`` (N/m per contact point, with ``contact_damping`` N s/m) moves that
+    softness onto the ground instead: Bullet makes a contact soft when either body is soft,
+    combining stiffness in series and adding damping, so robot-ground contacts stay the same
+    while robots built with ``RobotPhysics(soft_contacts=False)`` touch the ball and each other
+    rigidly. Opt-in only (``benchmarks/physics.py --variant strike``).
+    """
+
+    lateral_friction: float = GROUND_FRICTION
+    restitution: float = 1.0
+    rolling_friction: float = 0.0
+    contact_stiffness: float | None = None
+    contact_damping: float = 0.0
+
+    def dynamics(self) -> dict[str, float]:
+        """``changeDynamics`` keyword arguments for the ground plane."""
+        params = {
+            "lateralFriction": self.lateral_friction,
+            "restitution": self.restitution,
+            "rollingFriction": self.rolling_friction,
+        }
+        if self.contact_stiffness is not None:
+            params |= {
+                "contactStiffness": self.contact_stiffness,
+                "contactDamping": self.contact_damping,
+            }
+        return params
+
+
+#: The ground of every field built without an explicit ``ground`` (read when it is built).
+DEFAULT_GROUND = GroundPhysics()
 #: Goal nets swallow the ball (restitution 0); posts and bar return it (restitution 1, so the
 #: ball's own 0.8 decides the bounce).
 NET_RESTITUTION = 0.0
@@ -120,6 +158,10 @@ class BallPhysics:
             self.mass + self.inertia / self.radius**2
         )
         return 1.0 / rate
+
+
+#: The physics of every ball built without an explicit ``physics`` (read when it is built).
+DEFAULT_BALL = BallPhysics()
 
 
 @dataclass(frozen=True)
@@ -257,22 +299,20 @@ def _build_goal(world: PhysicsWorld, side: str) -> Goal:
     )
 
 
-def build_field(world: PhysicsWorld) -> Field:
-    """Add the ground plane (z = 0), both goals and the border walls to ``world``."""
+def build_field(world: PhysicsWorld, ground: GroundPhysics | None = None) -> Field:
+    """Add the ground plane (z = 0), both goals and the border walls to ``world``;
+    ``ground`` defaults to :data:`DEFAULT_GROUND`."""
+    ground_physics = ground if ground is not None else DEFAULT_GROUND
     plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=world.client)
-    ground = _static_body(
-        world,
-        plane,
-        (0.0, 0.0, 0.0),
-        (0.0, 0.0, 0.0, 1.0),
-        {"lateralFriction": GROUND_FRICTION, "restitution": 1.0, "rollingFriction": 0.0},
+    ground_id = _static_body(
+        world, plane, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0), ground_physics.dynamics()
     )
     goals = (_build_goal(world, "left"), _build_goal(world, "right"))
     walls = tuple(
         _static_box(world, centre, extents, restitution=NET_RESTITUTION)
         for centre, extents in WALL_BOXES
     )
-    return Field(ground_id=ground, goals=goals, wall_ids=walls)
+    return Field(ground_id=ground_id, goals=goals, wall_ids=walls)
 
 
 class Ball:
@@ -295,8 +335,9 @@ class Ball:
         position: Vec3 = (0.0, 0.0, BALL_RADIUS),
         physics: BallPhysics | None = None,
     ) -> Ball:
-        """Add a ball resting at ``position`` (its centre) to ``world``."""
-        physics = physics or BallPhysics()
+        """Add a ball resting at ``position`` (its centre) to ``world``; ``physics`` defaults
+        to :data:`DEFAULT_BALL`."""
+        physics = physics if physics is not None else DEFAULT_BALL
         client = world.client
         shape = pybullet.createCollisionShape(
             pybullet.GEOM_SPHERE, radius=physics.radius, physicsClientId=client

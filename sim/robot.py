@@ -56,6 +56,13 @@ class RobotPhysics:
     ground has four). The real server's ground contact (soft ERP 0.2, CFM 0.01 at h = 0.02 s)
     is a spring of ERP / (h CFM) = 1000 N/m with damping (1 - ERP) / CFM = 80 N s/m per ODE
     contact point; the standing robot's measured sink (5.7 mm under 45.2 N) confirms it.
+
+    ``soft_contacts`` False leaves the colliders without soft-contact parameters (and ignores
+    ``contact_stiffness``/``contact_damping``). Bullet makes a contact soft when EITHER body is
+    soft, so with True the foot-ball and robot-robot contacts are 1000 N/m springs too; False
+    is for a world whose ground carries the softness instead (``sim.field.GroundPhysics``),
+    which leaves robot-ground contacts as they are and makes the others rigid. Opt-in only
+    (``benchmarks/physics.py --variant strike``).
     """
 
     contact_stiffness: float = 1000.0
@@ -68,8 +75,10 @@ class RobotPhysics:
     servo_window: float = math.radians(10.0)
     linear_drag: float = BODY_DRAG
     angular_drag: float = BODY_DRAG
+    soft_contacts: bool = True
 
 
+#: The physics of every robot built without an explicit ``physics`` (read when it is built).
 DEFAULT_PHYSICS = RobotPhysics()
 
 
@@ -283,13 +292,13 @@ class SimRobot:
         self,
         world: PhysicsWorld,
         robot_type: int = 0,
-        physics: RobotPhysics = DEFAULT_PHYSICS,
+        physics: RobotPhysics | None = None,
         position: Vec3 = (0.0, 0.0, 0.4),
     ) -> None:
         self.world = world
         self.spec = robot_spec(robot_type)
         self.robot_type = robot_type
-        self.physics = physics
+        self.physics = physics if physics is not None else DEFAULT_PHYSICS
         self._client = world.client
         flags = (
             pybullet.URDF_USE_INERTIA_FROM_FILE
@@ -355,13 +364,15 @@ class SimRobot:
         for body in self.spec.bodies:
             link = self._link_of[body.name]
             kwargs = {"jointLimitForce": p.joint_limit_force} if link >= 0 else {}
-            if body.collider:
+            if body.collider and p.soft_contacts:
                 kwargs |= {
                     "contactStiffness": p.contact_stiffness,
                     "contactDamping": p.contact_damping,
                     "lateralFriction": p.lateral_friction,
                     "restitution": p.restitution,
                 }
+            elif body.collider:
+                kwargs |= {"lateralFriction": p.lateral_friction, "restitution": p.restitution}
             if kwargs:
                 pybullet.changeDynamics(bid, link, physicsClientId=cid, **kwargs)
         for a, b in _excluded_pairs(self.spec):
