@@ -7,6 +7,7 @@ changes WOULD buy (measured here, not adopted).
     .venv/bin/python benchmarks/physics.py --variant iters15 --pytest tests/test_walk.py -q
     .venv/bin/python benchmarks/physics.py --variant strike --contact   # ball bounce and roll
     .venv/bin/python benchmarks/physics.py --variant strike --run benchmarks/kick.py --impact
+    .venv/bin/python benchmarks/physics.py --variant strike --kick-gaps 0.024 0.06 0.1
 
 ``cycles_per_s``: each cycle does what the server does per robot: new joint speeds, one world
 step, sensor update, joint angles, gyro, accelerometer and foot pressure.
@@ -418,6 +419,55 @@ def report_contact(name: str) -> None:
             print(f"ball_rest_time_s[{name},v={speed:g}]: {rest:.2f}", flush=True)
 
 
+def report_kick_gaps(name: str, gaps: list[float], starts: int = 3) -> None:
+    """The packaged stand kick at strength 1 with the ball ``gap`` m ahead of the toe instead of
+    the calibrated ``ball_gap_m``: a later contact meets a faster foot, which matters once the
+    foot strikes instead of pushing. Medians over ``starts`` starts (waits of
+    ``benchmarks.kick.STAND_KICK_WAITS``) and both feet; falls counted."""
+    from behaviors.kick import KICK_LEFT, default_kicks
+    from benchmarks.kick import STAND_KICK_WAITS
+
+    kicks = default_kicks()
+    with VARIANTS[name]():
+        for gap in gaps:
+            motions = dict(kicks)
+            for key, motion in kicks.items():
+                if key.startswith(KICK_LEFT):
+                    motions[key] = dataclasses.replace(motion, ball_gap_m=gap)
+            results = [
+                _impact_after_wait(
+                    foot, seed, motions, STAND_KICK_WAITS[seed % len(STAND_KICK_WAITS)]
+                )
+                for seed in range(starts)
+                for foot in ("left", "right")
+            ]
+            label = f"[{name},gap={gap:g}]"
+            hit = [r for r in results if r.ball_speed_m_s > 0.0]
+            print(f"kick_foot_speed_m_s{label}: {_median(r.foot_speed_m_s for r in hit):.2f}")
+            print(f"kick_ball_speed_m_s{label}: {_median(r.ball_speed_m_s for r in hit):.2f}")
+            print(f"kick_distance_m{label}: {_median(r.kick.distance_m for r in results):.2f}")
+            print(f"kick_falls{label}: {sum(r.kick.fell for r in results)} of {len(results)}")
+            print(f"kick_misses{label}: {len(results) - len(hit)}", flush=True)
+
+
+def _impact_after_wait(foot: str, seed: int, motions: dict, wait: int) -> object:
+    """``benchmarks.kick.measure_impact``, but started ``wait`` cycles after the placement as
+    the stand-kick benchmark's starts are (measure_impact always starts one cycle after it)."""
+    from benchmarks.kick import _ImpactRecorder, run_trial
+
+    recorder = _ImpactRecorder(foot)
+    kick = run_trial(foot, 1.0, seed, 0, 0.0, motions, recorder, wait_cycles=wait)
+    return recorder.result(kick)
+
+
+def _median(values) -> float:
+    ordered = sorted(values)
+    if not ordered:
+        return math.nan
+    mid = len(ordered) // 2
+    return ordered[mid] if len(ordered) % 2 else 0.5 * (ordered[mid - 1] + ordered[mid])
+
+
 def run_script(name: str, script: list[str]) -> None:
     """Run a benchmark script (path, then its arguments) inside variant ``name``."""
     path = Path(script[0]).resolve()
@@ -436,6 +486,8 @@ def main() -> None:
     parser.add_argument("--variant", choices=sorted(VARIANTS), help="one variant")
     parser.add_argument("--speed-only", action="store_true", help="variants: no stance/fidelity")
     parser.add_argument("--contact", action="store_true", help="ball rebound and rolls")
+    parser.add_argument("--kick-gaps", type=float, nargs="+", help="stand kick, ball gaps (m)")
+    parser.add_argument("--starts", type=int, default=3, help="--kick-gaps: starts per gap")
     parser.add_argument(
         "--pytest", nargs=argparse.REMAINDER, metavar="ARG", help="run pytest in --variant (last)"
     )
@@ -448,6 +500,9 @@ def main() -> None:
         return
     if args.contact:
         report_contact(args.variant or "current")
+        return
+    if args.kick_gaps:
+        report_kick_gaps(args.variant or "current", args.kick_gaps, args.starts)
         return
     if args.pytest:
         import pytest
