@@ -101,6 +101,12 @@ def _build_parser() -> argparse.ArgumentParser:
     match.add_argument("--seed", type=int, default=0)
     match.add_argument("--left", default="NaoLeft", help="left team name")
     match.add_argument("--right", default="NaoRight", help="right team name")
+    match.add_argument(
+        "--left-config",
+        help="left team's settings (YAML, e.g. config/team.yaml; its name is "
+        "replaced by --left); default: the built-in defaults, which config/team.yaml spells out",
+    )
+    match.add_argument("--right-config", help="right team's settings (YAML), as --left-config")
     match.add_argument("--monitor-port", type=int, help="open a monitor port (e.g. 3200)")
     match.add_argument("--real-time", action="store_true", help="no faster than 50 cycles/s")
     match.add_argument(
@@ -201,15 +207,25 @@ def _run_team(args: argparse.Namespace) -> int:
     return 0
 
 
+def _match_team(name: str, config_path: str | None):
+    """A match team: the settings of ``config_path`` (or the defaults) under ``name``."""
+    from dataclasses import replace
+
+    from agent.team import TeamConfig
+
+    if config_path is None:
+        return TeamConfig(name)
+    return replace(TeamConfig.from_yaml(config_path), name=name)
+
+
 def _run_match(args: argparse.Namespace) -> int:
     from agent.match import run_match
-    from agent.team import TeamConfig
 
     result = run_match(
         args.duration,
         seed=args.seed,
-        left=TeamConfig(args.left),
-        right=TeamConfig(args.right),
+        left=_match_team(args.left, args.left_config),
+        right=_match_team(args.right, args.right_config),
         monitor_port=args.monitor_port,
         real_time=args.real_time,
         on_event=lambda text: print(text, flush=True),

@@ -67,3 +67,22 @@ def test_files_in_config_load(tmp_path):
         TeamConfig.from_yaml(bad)
     with pytest.raises(ConfigError, match="cannot read"):
         load_yaml_config(Outer, tmp_path / "missing.yaml")
+
+
+def test_team_file_spells_out_the_built_in_defaults():
+    """``naosoccer match`` plays the built-in defaults unless given a team file; the shipped
+    config/team.yaml documents them, so the two must not drift apart."""
+    from agent.team import TeamConfig
+
+    assert TeamConfig.from_yaml(CONFIG / "team.yaml") == TeamConfig()
+
+
+def test_match_team_takes_the_file_and_the_name(tmp_path):
+    from agent.cli import _match_team
+
+    path = tmp_path / "team.yaml"
+    path.write_text("name: Ignored\nstrategy:\n  attack:\n    dribble_kind: lfdl\n")
+    team = _match_team("Blue", str(path))
+    assert team.name == "Blue"
+    assert team.strategy.attack.dribble_kind == "lfdl"
+    assert _match_team("Red", None).strategy.attack.dribble_kind == "dfdl"
