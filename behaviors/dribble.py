@@ -426,8 +426,11 @@ class DribbleSkill(Skill):
 
     def __init__(self) -> None:
         self._engine: WalkEngine | None = None
-        self._key: tuple[str, int] | None = None
+        self._key: tuple[str, int, Path] | None = None
         self._mirror = False
+        #: where the gaits' settings come from (a benchmark trying other settings points it
+        #: at its own copy; the settings are read once per file, robot type and kind)
+        self.data_file: Path = DRIBBLE_FILE
         #: the last inputs and command, for benchmarks and debugging (gait's own frame)
         self.last_inputs: DribbleInputs | None = None
         self.last_command: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -466,9 +469,11 @@ class DribbleSkill(Skill):
 
     def engine_for(self, kind: str, robot_type: int) -> WalkEngine:
         """The walk engine of ``kind`` (a new one when the kind or the robot type changes)."""
-        if self._engine is None or self._key != (kind, robot_type):
-            self._engine = WalkEngine(robot_type, dribble_walk_parameters(kind, robot_type))
-            self._key = (kind, robot_type)
+        key = (kind, robot_type, self.data_file)
+        if self._engine is None or self._key != key:
+            parameters = dribble_walk_parameters(kind, robot_type, self.data_file)
+            self._engine = WalkEngine(robot_type, parameters)
+            self._key = key
         return self._engine
 
     # ------------------------------------------------------------------ one cycle
@@ -481,7 +486,7 @@ class DribbleSkill(Skill):
         if mirror != self._mirror:  # the engine's feet are in the other side's frame
             engine.reset()
             self._mirror = mirror
-        gait = dribble_gait(kind, robot_type)
+        gait = dribble_gait(kind, robot_type, self.data_file)
         inputs = _perceived_inputs(context, direction_deg)
         if inputs is None:  # lost the ball or the own pose: tread on the spot until seen
             command = (0.0, 0.0, 0.0)

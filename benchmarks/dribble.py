@@ -21,7 +21,10 @@ Definitions (the report's figures mean exactly this):
 
 ``python -m benchmarks.dribble`` prints ``name: value`` lines for type 0 (``--types`` for more,
 ``--seeds 0 1 2 ...`` for several runs each: speeds then average over the runs that reached
-the distance, counts add up).
+the distance, counts add up). ``--set dfdl.controller.default.speed=0.8`` (repeatable) runs
+the gaits with a setting of ``behaviors/data/dribble.yaml`` changed (a copy in a temporary
+folder; the file itself is untouched), so that tuning trials are repo commands too;
+``--jobs 2`` runs the seeds in parallel processes.
 """
 
 from __future__ import annotations
@@ -29,9 +32,16 @@ from __future__ import annotations
 import argparse
 import math
 import statistics
+import tempfile
 from collections import defaultdict
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
 
+import yaml
+
+from behaviors.dribble import DRIBBLE_FILE
 from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
 from world.nao_model import ROBOT_TYPES
@@ -156,12 +166,15 @@ def run_dribble(
     direction_deg: float = 0.0,
     seed: int = 0,
     max_seconds: float | None = None,
+    data_file: Path = DRIBBLE_FILE,
 ) -> DribbleRun:
     """Dribble until the ball travelled ``distance`` m along ``direction_deg`` (or fell, or
-    ``max_seconds``, by default the time at 0.2 m/s)."""
+    ``max_seconds``, by default the time at 0.2 m/s), with the gait settings of
+    ``data_file``."""
     session, agent = start_dribble_episode(robot_type, direction_deg, seed)
     result = DribbleRun(kind, robot_type, foot, direction_deg)
     skill = agent.behavior.skill("dribble")
+    skill.data_file = data_file
     limit = max_seconds if max_seconds is not None else distance / 0.2 + 2.0
     h = math.radians(direction_deg)
     ux, uy = math.cos(h), math.sin(h)
@@ -233,6 +246,31 @@ def report_lines(runs: list[DribbleRun]) -> list[str]:
     return lines
 
 
+def with_settings(overrides: list[str], folder: Path, source: Path = DRIBBLE_FILE) -> Path:
+    """A copy of the gait settings ``source`` in ``folder`` with ``overrides`` applied: each
+    ``dotted.key=value`` (value read as YAML) replaces or adds that key. Returns its path."""
+    data: dict[str, Any] = yaml.safe_load(source.read_text()) or {}
+    for override in overrides:
+        dotted, sep, text = override.partition("=")
+        if not sep or not dotted:
+            raise ValueError(f"a setting is dotted.key=value, got {override!r}")
+        *parents, leaf = dotted.split(".")
+        node = data
+        for name in parents:
+            node = node.setdefault(name, {})
+            if not isinstance(node, dict):
+                raise ValueError(f"{dotted}: {name} is not a mapping in {source}")
+        node[leaf] = yaml.safe_load(text)
+    path = folder / source.name
+    path.write_text(yaml.safe_dump(data, sort_keys=False))
+    return path
+
+
+def _run_one(arguments: tuple[str, int, float, str, float, int, Path]) -> DribbleRun:
+    kind, robot_type, distance, foot, direction, seed, data_file = arguments
+    return run_dribble(kind, robot_type, distance, foot, direction, seed, data_file=data_file)
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--types", type=int, nargs="+", default=[0], choices=ROBOT_TYPES)
@@ -241,15 +279,20 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--distance", type=float, default=10.0)
     parser.add_argument("--direction", type=float, default=0.0)
     parser.add_argument("--seeds", type=int, nargs="+", default=[0])
+    parser.add_argument("--set", action="append", default=[], metavar="DOTTED.KEY=VALUE")
+    parser.add_argument("--jobs", type=int, default=1)
     args = parser.parse_args(argv)
-    for robot_type in args.types:
-        for kind in args.kinds:
-            runs = [
-                run_dribble(kind, robot_type, args.distance, args.foot, args.direction, seed)
-                for seed in args.seeds
-            ]
-            for line in report_lines(runs):
-                print(line, flush=True)
+    with tempfile.TemporaryDirectory() as folder:
+        data_file = with_settings(args.set, Path(folder)) if args.set else DRIBBLE_FILE
+        with ProcessPoolExecutor(max(args.jobs, 1)) as pool:
+            for robot_type in args.types:
+                for kind in args.kinds:
+                    jobs = [
+                        (kind, robot_type, args.distance, args.foot, args.direction, s, data_file)
+                        for s in args.seeds
+                    ]
+                    for line in report_lines(list(pool.map(_run_one, jobs))):
+                        print(line, flush=True)
 
 
 if __name__ == "__main__":
