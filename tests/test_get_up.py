@@ -1,12 +1,13 @@
 """Fall detection and the get_up skill: perception-only decisions checked against the simulator.
 
 The back get-up (predictive tracking, tuned per type for types 1, 3, 4; a failed sit-up is
-retried at once) and the front one bring about half of the robots back on their feet within
-4 s (``benchmarks/get_up.py`` default run: 65 of 100; lying on the back 76 %, on the front 1 of
-8, on a side 4 of 13). The trial test
-below asks for both sides and is a strict xfail so that it turns red the day they do and the
-marker must go. The search that tunes the sequences (``learning/get_up_search.py``) is checked
-here for what it writes into the packaged file.
+retried at once) and the front one (abandoned for a back get-up as soon as the robot tips back
+over) bring three robots in four back on their feet within 4 s (``benchmarks/get_up.py``
+default run: 76 of 100; lying on the back 84 %, on the front 4 of 8, on a side 6 of 13;
+``--seed 500``: 73 of 100). The trial test below asks for both sides; for type 0 it is a
+strict xfail (its back fall of that seed stays down) so that it turns red the day it passes.
+The search that tunes the sequences (``learning/get_up_search.py``) is checked here for what it
+writes into the packaged file.
 """
 
 from __future__ import annotations
@@ -253,8 +254,16 @@ def test_fall_side_from_perception_matches_the_simulator(direction):
         session.close()
 
 
-@pytest.mark.xfail(strict=True, reason="the front get-up does not yet work in this simulator")
-@pytest.mark.parametrize("robot_type", [0, 3])
+_TYPE0_BACK_FALL_STAYS_DOWN = pytest.mark.xfail(
+    strict=True,
+    reason="type 0's back fall of seed 7 stays down within 4 s (type 0 is up in 19 of 20 "
+    "benchmark trials; this is one of the others), its front fall gets up in 3.9 s",
+)
+
+
+@pytest.mark.parametrize("robot_type", [pytest.param(0, marks=_TYPE0_BACK_FALL_STAYS_DOWN), 3])
 def test_get_up_after_a_physical_fall(robot_type):
+    """One physical fall towards the front and one towards the back, each up within 4 s and
+    still up half a second later (the benchmark's rule; deterministic for a seed)."""
     results = [run_trial(robot_type, direction, seed=7) for direction in ("front", "back")]
     assert all(r.succeeded for r in results), results
