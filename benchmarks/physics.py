@@ -252,6 +252,13 @@ def _strike(bounce: bool = True) -> Callable[[], contextlib.AbstractContextManag
     contact bounces at 0.8 like the real server's (ball bounce 0.8, robot bounce off, ODE takes
     the one that is set), ball-ground and ball-post stay 0.8, and robot-robot/robot-ground are
     0.01; without, the robot links keep restitution 0 (foot-ball 0).
+
+    Measured (not adopted): the fidelity figures and ball rolls are unchanged, a driven foot box
+    gives the ball 1.8x its speed instead of 1.0x, but the stand kick gains little (the foot
+    meets the ball at 1.3-1.9 m/s, early in its swing) and falls far more often (14 of 24
+    stand kicks against 2), because a robot's own links now touch each other rigidly: with
+    self-collision switched off both physics fall alike. The dropped ball's rebound falls from
+    0.53 to 0.35 of its height (the ground's softness now acts on the ball too).
     """
 
     @contextlib.contextmanager
