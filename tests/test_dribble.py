@@ -436,3 +436,22 @@ def test_type4_dribble_keeps_the_ball_rolling():
         assert session.ball.position()[0] - start[0] > 0.7
     finally:
         session.close()
+
+
+def test_benchmark_settings_override_changes_only_the_named_keys(tmp_path):
+    """``benchmarks.dribble --set`` tries a setting on a copy of dribble.yaml: the named key
+    changes (also a new one), everything else reads as in the real file."""
+    from benchmarks.dribble import with_settings
+
+    path = with_settings(
+        ["dfdl.controller.default.speed=0.7", "lfdl.walk.type2={step: {max_forward: 0.13}}"],
+        tmp_path,
+    )
+    assert dribble_gait("dfdl", 0, path).speed == pytest.approx(0.7)
+    assert replace(dribble_gait("dfdl", 0, path), speed=0.0) == replace(
+        dribble_gait("dfdl", 0), speed=0.0
+    )
+    assert dribble_walk_parameters("lfdl", 2, path).step.max_forward == pytest.approx(0.13)
+    assert dribble_walk_parameters("lfdl", 0, path) == dribble_walk_parameters("lfdl", 0)
+    with pytest.raises(ValueError, match="dotted"):
+        with_settings(["no-equals-sign"], tmp_path)
