@@ -79,8 +79,14 @@ class FallBank:
     team_name: str
     states: list[LyingState]
 
-    def trial(self, index: int, sequences: Mapping[str, KeyframeSequence]) -> float:
-        """Play ``get_up`` from lying state ``index`` with ``sequences``; the trial's score."""
+    def trial(
+        self, index: int, sequences: Mapping[str, KeyframeSequence], attempts: int = 1
+    ) -> float:
+        """Play ``get_up`` from lying state ``index`` with ``sequences``; the trial's score.
+
+        The trial ends once the skill starts attempt ``attempts + 1``: one attempt for a
+        get-up (a retry cannot fit into the time), two for a side roll and what follows it.
+        """
         state = self.states[index]
         self.session.restore_state(state.snapshot)
         agent = LocalAgent(self.session, self.agent, self.robot_type, self.team_name)
@@ -94,8 +100,8 @@ class FallBank:
         for _ in range(round(TIME_LIMIT_S / 0.02)):
             finished = agent.run("get_up")
             peak = max(peak, closeness(agent))
-            if finished or skill.attempts > 1:
-                break  # standing, or the first attempt failed (a retry cannot fit in the time)
+            if finished or skill.attempts > attempts:
+                break  # standing, or the attempts are used up (a retry cannot fit in the time)
         success = finished and agent.is_standing()
         if success:
             for _ in range(STILL_STANDING_CYCLES):
@@ -117,9 +123,11 @@ def make_bank(
     count: int,
     seed: int,
     lying_on: tuple[str, ...] | None = None,
+    tries_per_fall: int = 4,
 ) -> FallBank:
     """``count`` falls (directions taken in turn) from one standing start, each saved; with
-    ``lying_on`` only falls that end on one of those sides are kept."""
+    ``lying_on`` only falls that end on one of those sides are kept, out of at most
+    ``tries_per_fall * count`` falls (about one in eight pushes sideways ends on a side)."""
     rng = np.random.default_rng(seed)
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     driver = join_at_random_spot(session, robot_type, rng)
@@ -127,7 +135,7 @@ def make_bank(
     standing_world = copy.deepcopy(driver.world)
     states = []
     attempts = 0
-    while len(states) < count and attempts < 4 * count:
+    while len(states) < count and attempts < tries_per_fall * count:
         direction = directions[attempts % len(directions)]
         attempts += 1
         session.restore_state(standing)
@@ -153,6 +161,8 @@ class Parameter:
     frame: int
     key: str  # a left joint name ("llj3", "laj1") or "duration"
     step: float
+    #: False for a one-sided motion (a roll): the twin on the other side keeps its target
+    mirrored: bool = True
 
     def get(self, entry: dict[str, Any]) -> float:
         frame = entry["frames"][self.frame]
@@ -167,21 +177,32 @@ class Parameter:
         value = round(max(low, min(high, value)), 1)
         frame["joints"][self.key] = value
         twin = MIRROR_TABLE[self.key]
-        if twin.twin in frame["joints"]:
+        if self.mirrored and twin.twin in frame["joints"]:
             frame["joints"][twin.twin] = round(twin.sign * value, 1) + 0.0
 
 
 def parameters(
-    entry: dict[str, Any], frames: int, joint_step: float, time_step: float, first: int = 0
+    entry: dict[str, Any],
+    frames: int,
+    joint_step: float,
+    time_step: float,
+    first: int = 0,
+    one_sided: bool = False,
 ) -> list[Parameter]:
-    """The searchable numbers of frames ``first`` to ``frames - 1`` of a raw sequence entry."""
+    """The searchable numbers of frames ``first`` to ``frames - 1`` of a raw sequence entry;
+    ``one_sided`` searches every joint on its own (a roll, where left and right differ)."""
     out = []
     for index, frame in enumerate(entry["frames"][:frames]):
         if index < first:
             continue
         out.append(Parameter(index, "duration", time_step))
-        for name in frame.get("joints", {}):
-            if name.startswith("l") or name.startswith("h"):
+        joints = frame.get("joints", {})
+        for name in joints:
+            # a left joint moves its right twin with it; a right joint without its twin in the
+            # frame is searched on its own
+            if one_sided:
+                out.append(Parameter(index, name, joint_step, mirrored=False))
+            elif name.startswith(("l", "h")) or MIRROR_TABLE[name].twin not in joints:
                 out.append(Parameter(index, name, joint_step))
     return out
 
@@ -193,10 +214,10 @@ def candidate_sequences(name: str, entry: dict[str, Any]) -> dict[str, KeyframeS
     return sequences
 
 
-def score(bank: FallBank, name: str, entry: dict[str, Any]) -> tuple[float, int]:
+def score(bank: FallBank, name: str, entry: dict[str, Any], attempts: int = 1) -> tuple[float, int]:
     """Total score and number of successes of a candidate over the whole bank."""
     sequences = candidate_sequences(name, entry)
-    results = [bank.trial(i, sequences) for i in range(len(bank.states))]
+    results = [bank.trial(i, sequences, attempts) for i in range(len(bank.states))]
     return sum(results), sum(r >= 1.0 for r in results)
 
 
@@ -210,16 +231,18 @@ def coordinate_search(
     joint_step: float = 15.0,
     time_step: float = 0.08,
     first_frame: int = 0,
+    attempts: int = 1,
+    one_sided: bool = False,
 ) -> dict[str, Any]:
     """Improve ``entry`` one parameter at a time; returns the best entry found."""
     rng = np.random.default_rng(0)
     best = copy.deepcopy(entry)
-    best_score, best_up = score(bank, name, best)
+    best_score, best_up = score(bank, name, best, attempts)
     print(f"start: score {best_score:.2f}, up {best_up}/{len(bank.states)}", flush=True)
     started = time.monotonic()
     for pass_index in range(passes):
         improved = False
-        candidates = parameters(best, frames, joint_step, time_step, first_frame)
+        candidates = parameters(best, frames, joint_step, time_step, first_frame, one_sided)
         for k in rng.permutation(len(candidates)):
             parameter = candidates[k]
             for sign in (1.0, -1.0):
@@ -229,7 +252,7 @@ def coordinate_search(
                 parameter.set(trial, parameter.get(best) + sign * parameter.step)
                 if trial == best:
                     continue
-                value, up = score(bank, name, trial)
+                value, up = score(bank, name, trial, attempts)
                 if value > best_score + 1e-3:
                     best, best_score, best_up, improved = trial, value, up, True
                     print(
@@ -270,12 +293,26 @@ def main() -> None:
     parser.add_argument("--direction", default="front", help="fall directions, comma-separated")
     parser.add_argument("--falls", type=int, default=12)
     parser.add_argument("--lying-on", help="keep only falls ending on these sides (a,b)")
+    parser.add_argument(
+        "--fall-tries", type=int, default=4, help="falls tried per fall kept (with --lying-on)"
+    )
     parser.add_argument("--seed", type=int, default=100)
     parser.add_argument("--frames", type=int, default=3, help="search the first N frames")
     parser.add_argument("--first-frame", type=int, default=0, help="... from this one on")
     parser.add_argument("--passes", type=int, default=2)
     parser.add_argument("--budget-s", type=float, default=600.0)
     parser.add_argument("--joint-step", type=float, default=15.0)
+    parser.add_argument(
+        "--one-sided",
+        action="store_true",
+        help="search each joint on its own, not with its mirror twin (a roll)",
+    )
+    parser.add_argument(
+        "--attempts",
+        type=int,
+        default=1,
+        help="attempts a trial may start (2 for a side roll and the get-up after it)",
+    )
     parser.add_argument(
         "--validate-seed",
         type=int,
@@ -287,7 +324,9 @@ def main() -> None:
     args = parser.parse_args()
     entries = raw_entries()
     lying_on = tuple(args.lying_on.split(",")) if args.lying_on else None
-    bank = make_bank(args.type, args.direction.split(","), args.falls, args.seed, lying_on)
+    bank = make_bank(
+        args.type, args.direction.split(","), args.falls, args.seed, lying_on, args.fall_tries
+    )
     sides = [s.lying_on for s in bank.states]
     print(f"bank: {len(sides)} falls, lying on {sides}", flush=True)
     name = args.write or args.sequence
@@ -300,16 +339,23 @@ def main() -> None:
         args.budget_s,
         args.joint_step,
         first_frame=args.first_frame,
+        attempts=args.attempts,
+        one_sided=args.one_sided,
     )
     print(yaml.safe_dump({name: best}, default_flow_style=None, sort_keys=False, width=10_000))
     bank.session.close()
     keep = True
     if args.validate_seed is not None:
         fresh = make_bank(
-            args.type, args.direction.split(","), args.falls, args.validate_seed, lying_on
+            args.type,
+            args.direction.split(","),
+            args.falls,
+            args.validate_seed,
+            lying_on,
+            args.fall_tries,
         )
-        start_score, start_up = score(fresh, name, entries[args.sequence])
-        best_score, best_up = score(fresh, name, best)
+        start_score, start_up = score(fresh, name, entries[args.sequence], args.attempts)
+        best_score, best_up = score(fresh, name, best, args.attempts)
         n = len(fresh.states)
         print(f"validation: start {start_score:.2f} ({start_up}/{n} up)")
         print(f"validation: best {best_score:.2f} ({best_up}/{n} up)")

@@ -42,7 +42,13 @@ pytest.importorskip("pybullet")
 from benchmarks.get_up import run_trial
 from learning.falls import FALL_DIRECTIONS, knock_over
 from learning.falls import join_at_random_spot as join
-from learning.get_up_search import Parameter, candidate_sequences, dump_entries, raw_entries
+from learning.get_up_search import (
+    Parameter,
+    candidate_sequences,
+    dump_entries,
+    parameters,
+    raw_entries,
+)
 from sim.session import Session, SessionConfig
 
 
@@ -131,6 +137,21 @@ def test_search_parameters_move_mirror_twins_within_the_joint_range():
     assert entry["frames"][0]["joints"]["rlj2"] == -entry["frames"][0]["joints"]["llj2"]
     Parameter(0, "duration", 0.08).set(entry, -1.0)
     assert entry["frames"][0]["duration"] > 0.0
+
+
+def test_search_parameters_cover_one_sided_joints_of_a_roll():
+    """A roll moves each side differently: with ``one_sided`` every joint is searched on its
+    own and moving it leaves its twin alone; otherwise pairs move together, by the left joint,
+    and a right joint without its twin in the frame is still searched."""
+    entry = {"frames": [{"duration": 0.3, "joints": {"raj1": -120, "rlj3": -25, "llj3": 0}}]}
+    one_sided = parameters(entry, frames=1, joint_step=15.0, time_step=0.08, one_sided=True)
+    assert {p.key for p in one_sided} == {"duration", "raj1", "rlj3", "llj3"}
+    paired = parameters(entry, frames=1, joint_step=15.0, time_step=0.08)
+    assert {p.key for p in paired} == {"duration", "raj1", "llj3"}
+    next(p for p in one_sided if p.key == "llj3").set(entry, 30.0)
+    assert entry["frames"][0]["joints"] == {"raj1": -120, "rlj3": -25, "llj3": 30.0}
+    next(p for p in paired if p.key == "llj3").set(entry, 15.0)
+    assert entry["frames"][0]["joints"] == {"raj1": -120, "rlj3": 15.0, "llj3": 15.0}
 
 
 def test_the_search_writes_the_get_up_file_back_unchanged():
