@@ -20,8 +20,10 @@ Phases:
 3. ``shuffle``: :class:`FootShuffle`, small IK-driven steps in place that move the robot by the
    measured error and leave the feet squared in the stand pose; then settle again (at most
    ``MAX_SHUFFLES`` times, after which a coarse ``READY_*`` alignment kicks anyway).
-4. ``kick``: the head level for ``HEAD_UP_CYCLES``, then the ``kick`` skill with the strength
-   that the kick's calibration table gives for the distance.
+4. ``head_up``: the head level in the stand for at least ``HEAD_UP_CYCLES``, then until the
+   torso has stopped swaying (:class:`CalmWatch`, at most ``CALM_MAX_CYCLES`` in all).
+5. ``kick``: the ``kick`` skill with the strength that the kick's calibration table gives for
+   the distance.
 
 Once the kick has started it plays to its end. The head
 looks down while approaching: a ball at the toes lies about 65 deg below the horizon, outside a
@@ -31,6 +33,7 @@ level head's 120 deg view cone.
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass
 from functools import cache
 
@@ -98,8 +101,18 @@ SHUFFLE_LOWER_S = 0.12
 MAX_SHUFFLES = 3
 #: Cycles in the stand between a shuffle's end and the next measurement.
 SHUFFLE_SETTLE_CYCLES = 15
-#: Cycles in the stand with the head level between the decision to kick and the kick.
+#: Cycles in the stand with the head level between the decision to kick and the kick, at
+#: least; then the kick waits until the torso is calm (:class:`CalmWatch`), at most
+#: ``CALM_MAX_CYCLES`` in all. Why: the walk's stop and the shuffle leave the torso swaying a
+#: few degrees for a second or more, and the right kicks that started 15 cycles after the
+#: head-up into such a sway fell over the support foot (5 of 20, benchmarks/kick.py); the same
+#: layouts kicked 60 cycles later did not fall.
 HEAD_UP_CYCLES = 15
+CALM_MAX_CYCLES = 90
+#: Calm: the perceived torso roll and pitch each stayed within this range (deg) over the last
+#: ``CALM_WINDOW_CYCLES`` cycles.
+CALM_RANGE_DEG = 0.8
+CALM_WINDOW_CYCLES = 12
 
 
 @dataclass(frozen=True)
@@ -231,6 +244,7 @@ class BasicKickSkill(Skill):
         self._seen: list[tuple[float, float]] = []
         self._seen_time: float | None = None
         self._head_up = 0
+        self._calm = CalmWatch()
 
     def validate(self, target_x: float, target_y: float, distance: float | str = LONG) -> None:
         if not (math.isfinite(target_x) and math.isfinite(target_y)):
@@ -244,13 +258,18 @@ class BasicKickSkill(Skill):
     def step(
         self, context: SkillContext, target_x: float, target_y: float, distance: float | str = LONG
     ) -> bool:
-        if self.phase == "kick":
-            assert self.foot is not None
-            if self._head_up < HEAD_UP_CYCLES:
+        if self.phase == "head_up":
+            robot = context.world.robot
+            self._calm.add(robot.roll_deg, robot.pitch_deg)
+            waiting = self._head_up < HEAD_UP_CYCLES or not self._calm.calm
+            if waiting and self._head_up < CALM_MAX_CYCLES:
                 # head level before the kick: it was tuned so (a head pitched down fell more)
                 self._head_up += 1
                 context.manager.execute_sub_behavior("pose", "stand")
                 return False
+            self.phase = "kick"  # from here on the kick plays to its end
+        if self.phase == "kick":
+            assert self.foot is not None
             return context.manager.execute_sub_behavior("kick", self.foot, self._strength)
         world = context.world
         if world.pose is None or world.ball.position is None:
@@ -318,7 +337,7 @@ class BasicKickSkill(Skill):
         self._settled = 0
         alignment = self._seen_alignment(alignment, context, motion)
         if alignment.fine or (alignment.ready and self._shuffles >= MAX_SHUFFLES):
-            self.phase = "kick"
+            self.phase = "head_up"
             self._strength = strength_for(motion, distance)
         elif alignment.within_shuffle and self._shuffles < MAX_SHUFFLES:
             self.phase = "shuffle"
@@ -403,6 +422,34 @@ class BasicKickSkill(Skill):
     @staticmethod
     def _look_down(context: SkillContext) -> None:
         context.commands.set_targets({"hj1": 0.0, "hj2": HEAD_PITCH_DEG})
+
+
+class CalmWatch:
+    """Whether the standing torso has stopped swaying: its perceived roll and pitch each
+    stayed within :data:`CALM_RANGE_DEG` over the last :data:`CALM_WINDOW_CYCLES` cycles.
+
+    Why the tilt estimate rather than the gyro: the gyro's single readings jump by several
+    deg/s even while the robot stands still, while a sway of a degree shows in the tilt."""
+
+    def __init__(self) -> None:
+        self._tilts: deque[tuple[float, float]] = deque(maxlen=CALM_WINDOW_CYCLES)
+
+    def add(self, roll_deg: float, pitch_deg: float) -> None:
+        self._tilts.append((roll_deg, pitch_deg))
+
+    def clear(self) -> None:
+        self._tilts.clear()
+
+    @property
+    def calm(self) -> bool:
+        if len(self._tilts) < CALM_WINDOW_CYCLES:
+            return False
+        rolls = [roll for roll, _ in self._tilts]
+        pitches = [pitch for _, pitch in self._tilts]
+        return (
+            max(rolls) - min(rolls) < CALM_RANGE_DEG
+            and max(pitches) - min(pitches) < CALM_RANGE_DEG
+        )
 
 
 # ---------------------------------------------------------------------- fine alignment

@@ -51,6 +51,9 @@ FEET = ("left", "right")
 BALANCE_GAIN = 3.0
 #: The support ankle's roll correction is limited to this many degrees either way.
 BALANCE_LIMIT_DEG = 16.0
+#: Degrees of support-ankle roll per deg/s of torso roll rate (gyro), added to the roll term:
+#: damping, so the correction acts while the lean is still growing rather than after.
+BALANCE_DAMPING = 0.0
 
 
 @dataclass(frozen=True)
@@ -236,7 +239,8 @@ class KickSkill(Skill):
         elapsed = self._player.elapsed
         self._done = self._player.step(context.commands, robot.joints_deg)
         assert self._balance is not None
-        self._balance.correct(context.commands, elapsed, robot.roll_deg)
+        roll_rate = float(robot.gyro_deg_s[1])  # + = rolling to the right
+        self._balance.correct(context.commands, elapsed, robot.roll_deg, roll_rate)
         return self._done
 
 
@@ -260,13 +264,16 @@ class _OneLegBalance:
         #: send speeds, not targets)
         self._last_targets = dict.fromkeys(self._joints, 0.0)
 
-    def correct(self, commands: JointCommands, elapsed: float, roll_deg: float) -> None:
+    def correct(
+        self, commands: JointCommands, elapsed: float, roll_deg: float, roll_rate: float = 0.0
+    ) -> None:
         if not self._start <= elapsed < self._end:
             return
         roll = -roll_deg if self._mirror else roll_deg  # roll as the left kick sees it
+        rate = -roll_rate if self._mirror else roll_rate
         if self._reference is None:
             self._reference = roll
-        correction = BALANCE_GAIN * (roll - self._reference)
+        correction = BALANCE_GAIN * (roll - self._reference) + BALANCE_DAMPING * rate
         correction = max(-BALANCE_LIMIT_DEG, min(BALANCE_LIMIT_DEG, correction))
         if self._mirror:
             correction = -correction  # roll joints change sign in the mirror image

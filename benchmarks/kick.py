@@ -16,7 +16,8 @@ Basic kicks: the same standing robot, the ball 0.5-2 m away at a random bearing,
 ``distance`` m from the ball within 45 deg of the line robot -> ball;
 ``execute("basic_kick", x, y, distance)`` runs until it finishes (or 20 s). Measured: ball
 travel from where it lay when the kick hit it, direction error against the target, falls, and
-the time from the first ``basic_kick`` cycle to the ball moving (walking included).
+the time from the first ``basic_kick`` cycle to the kick motion setting the ball moving (walking
+included; a bump while walking does not count, as it did up to the third round).
 
 Impact (``--impact``): stand kicks that also record the kicking foot's speed in the cycle before
 the ball moves, the ball's speed just after and the leg's joint speeds (where the power goes).
@@ -38,7 +39,7 @@ import argparse
 import math
 import statistics
 import sys
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -281,7 +282,8 @@ class BasicKickResult:
     #: direction of travel against the direction to the target (deg, + = left of it)
     direction_error_deg: float
     fell: bool
-    #: seconds from the first ``basic_kick`` cycle to the ball moving; None: never kicked
+    #: seconds from the first ``basic_kick`` cycle to the kick motion setting the ball moving
+    #: (bumps while walking do not count); None: never kicked
     time_to_kick_s: float | None
     #: the foot the skill chose (None if it never got that far)
     foot: str | None
@@ -289,6 +291,60 @@ class BasicKickResult:
     #: wants it, along the kicking foot (+ = further ahead) and across (+ = outwards); None
     #: when the kick never started
     placement_error_m: tuple[float, float] | None = None
+
+
+class BasicKickTrace:
+    """Per-cycle record of a ``basic_kick`` trial (pass as ``observe`` to
+    :func:`run_basic_trial`): the skill's phase, the perceived torso roll and pitch (deg) and
+    gyro (deg/s), and the ground-truth fall. Why: falls after a walk depend on the state the
+    walk and the alignment leave the robot in, which :meth:`summary` prints per trial."""
+
+    def __init__(self) -> None:
+        self.rows: list[tuple[str, float, float, tuple[float, float, float], bool]] = []
+        #: (t, left_active) of the walk's last step before the skill stopped walking
+        self.last_walk_phase: tuple[int, bool] | None = None
+
+    def __call__(self, driver: LocalAgent, phase: str) -> None:
+        state = driver.world.robot
+        gyro = tuple(float(v) for v in state.gyro_deg_s)
+        fell = driver.robot.has_fallen()
+        self.rows.append((phase, state.roll_deg, state.pitch_deg, gyro, fell))  # type: ignore[arg-type]
+        if phase in ("approach", "back_off"):
+            self.last_walk_phase = driver.behavior.skill("walk").phase  # type: ignore[attr-defined]
+
+    def phase_seconds(self) -> list[tuple[str, float]]:
+        """Consecutive phases and how long each lasted (s)."""
+        spans: list[tuple[str, float]] = []
+        for phase, *_ in self.rows:
+            if spans and spans[-1][0] == phase:
+                spans[-1] = (phase, spans[-1][1] + CYCLE_SECONDS)
+            else:
+                spans.append((phase, CYCLE_SECONDS))
+        return spans
+
+    def summary(self) -> str:
+        """One line: the phase timeline, the state when the kick motion started, the largest
+        gyro reading over the 25 cycles before, the largest roll in the kick, and the phase of
+        a fall."""
+        spans = " ".join(f"{p}:{t:.2f}" for p, t in self.phase_seconds())
+        kick = [i for i, row in enumerate(self.rows) if row[0] == "kick"]
+        parts = [spans]
+        if kick:
+            start = kick[0]
+            _, roll, pitch, gyro, _ = self.rows[start]
+            window = self.rows[max(start - 25, 0) : start]
+            calm = max(max(abs(g) for g in row[3]) for row in window) if window else math.nan
+            peak = max((abs(row[1]) for row in self.rows[start:]), default=math.nan)
+            parts.append(
+                f"start roll {roll:+.1f} pitch {pitch:+.1f} gyro "
+                + "/".join(f"{g:+.0f}" for g in gyro)
+                + f" max|gyro| before {calm:.0f}, kick max|roll| {peak:.1f}"
+            )
+        falls = [row[0] for row in self.rows if row[4]]
+        if falls:
+            parts.append(f"FELL in {falls[0]}")
+        parts.append(f"walk last {self.last_walk_phase}")
+        return "; ".join(parts)
 
 
 #: Give a basic-kick trial this many cycles to reach the ball and kick (20 s).
@@ -311,10 +367,12 @@ def run_basic_trial(
     ball_bearing_deg: float,
     target_direction_deg: float,
     robot_type: int = 0,
+    observe: Callable[[LocalAgent, str], None] | None = None,
 ) -> BasicKickResult:
     """One basic kick: see :class:`BasicKickResult`. The robot stands at :data:`START`; the
     ball lies at ``ball_distance`` m and ``ball_bearing_deg`` from its facing; the target is
-    ``asked`` m (10 m for "long") from the ball in ``target_direction_deg``."""
+    ``asked`` m (10 m for "long") from the ball in ``target_direction_deg``. ``observe`` is
+    called after every cycle with the agent and the skill's phase in that cycle (traces)."""
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     try:
         driver = stand_up(session, robot_type)
@@ -336,9 +394,14 @@ def run_basic_trial(
             if placement is None and skill.phase == "kick" and skill.foot is not None:
                 motion = kick_motion(robot_type)
                 placement = ball_placement_error(driver, skill.foot, motion)
+            phase = skill.phase
             finished = driver.run("basic_kick", tx, ty, asked)
             cycles += 1
-            if contact is None and session.ball.speed() > MOVING_SPEED:
+            if observe is not None:
+                observe(driver, phase)
+            # the kick's contact: a bump while walking moves the ball too, but is no kick
+            kicking = phase == "kick"
+            if contact is None and kicking and session.ball.speed() > MOVING_SPEED:
                 contact, start = cycles, (before[0], before[1])
             fell |= robot.has_fallen()
         for _ in range(ROLL_OUT_CYCLES):
@@ -369,6 +432,9 @@ def main() -> None:
         "--basic-distance", default="3", help='metres asked of basic_kick, or "long"'
     )
     parser.add_argument(
+        "--basic-only", type=int, nargs="*", help="run only these basic trial numbers"
+    )
+    parser.add_argument(
         "--impact", action="store_true", help="foot and ball speeds at contact, then stop"
     )
     args = parser.parse_args()
@@ -379,24 +445,34 @@ def main() -> None:
         stand_kicks(args.seeds, args.robot_type, args.strengths)
     if args.basic_trials:
         asked = args.basic_distance if args.basic_distance == "long" else float(args.basic_distance)
-        basic_kicks(args.basic_trials, args.robot_type, asked)
+        basic_kicks(args.basic_trials, args.robot_type, asked, args.basic_only)
 
 
 def basic_kick_figures(
-    trials: int, robot_type: int, distance: float | str, seed: int = 0, verbose: bool = False
+    trials: int,
+    robot_type: int,
+    distance: float | str,
+    seed: int = 0,
+    verbose: bool = False,
+    only: Collection[int] | None = None,
 ) -> dict[str, float]:
     """``basic_kick`` from a stand, the ball 0.5-2 m away at random bearings (layouts drawn
     from ``seed``; trial ``k`` runs session seed ``k``): medians over the trials that kicked of
     ``basic_kick_distance_m``, ``basic_kick_direction_error_deg`` (absolute) and
     ``basic_kick_time_s`` (first ``basic_kick`` cycle to the ball moving), and the counts
-    ``basic_kick_falls`` and ``basic_kick_misses`` (trials that never kicked)."""
+    ``basic_kick_falls`` and ``basic_kick_misses`` (trials that never kicked). ``only``: run
+    just these trial numbers (same layouts); ``verbose`` prints each trial with its trace."""
     rng = np.random.default_rng(seed + 1)  # seed 0 keeps the layouts of earlier rounds
     results = []
     for k in range(trials):
         layout = random_basic_layout(rng)
-        results.append(run_basic_trial(distance, k, *layout, robot_type=robot_type))
-        if verbose:
+        if only is not None and k not in only:
+            continue
+        trace = BasicKickTrace() if verbose else None
+        results.append(run_basic_trial(distance, k, *layout, robot_type=robot_type, observe=trace))
+        if trace is not None:
             print(f"# trial {k}: {results[-1]}", flush=True)
+            print(f"#   {trace.summary()}", flush=True)
     kicked = [r for r in results if r.time_to_kick_s is not None]
 
     def median(values: list[float]) -> float:
@@ -411,9 +487,11 @@ def basic_kick_figures(
     }
 
 
-def basic_kicks(trials: int, robot_type: int, asked: float | str) -> None:
+def basic_kicks(
+    trials: int, robot_type: int, asked: float | str, only: Collection[int] | None = None
+) -> None:
     """Print :func:`basic_kick_figures` as ``name[asked=...]: value`` lines."""
-    figures = basic_kick_figures(trials, robot_type, asked, verbose=True)
+    figures = basic_kick_figures(trials, robot_type, asked, verbose=True, only=only)
     label = f"[asked={asked}]"
     for name, value in figures.items():
         if name in ("basic_kick_falls", "basic_kick_misses"):

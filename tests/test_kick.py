@@ -182,7 +182,12 @@ def test_kick_rejects_bad_arguments(foot, strength):
 
 
 def test_kick_skill_writes_the_first_frame_and_finishes_after_the_motion():
-    state = SimpleNamespace(robot_type=0, joints_deg=dict(get_pose("stand").joints), roll_deg=0.0)
+    state = SimpleNamespace(
+        robot_type=0,
+        joints_deg=dict(get_pose("stand").joints),
+        roll_deg=0.0,
+        gyro_deg_s=(0.0, 0.0, 0.0),
+    )
     commands = JointCommands(0)
     context = SimpleNamespace(world=SimpleNamespace(robot=state), commands=commands)
     skill = KickSkill()
