@@ -10,7 +10,9 @@ player with the lowest claim is *active* and goes for the ball, and nobody else 
 team does not converge on the ball in a crowd that knocks itself over. Without claims (a
 teammate that says nothing), the teammates it has seen count. The goalkeeper guards its goal
 line and goes for the ball only when the ball is in front of its goal and it is the closest.
-The others hold their formation places, facing the ball so they keep seeing it. A player that
+The field player with the next-lowest claim supports: it waits ahead of and beside the ball
+for a loose ball (:class:`SupportConfig`). The others hold their formation places, facing the
+ball so they keep seeing it. A player that
 has not seen the ball for a few seconds turns on the spot until it sees it again.
 
 The active player walks to a point behind the ball on the line to its aim in the opponent goal
@@ -27,8 +29,8 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from agent.roles import ClaimBoard, claim_message, is_closest
-from world.field_geometry import GOAL_WIDTH, HALF_LENGTH
+from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
+from world.field_geometry import GOAL_WIDTH, HALF_LENGTH, HALF_WIDTH
 from world.localization import wrap_deg
 from world.yaml_config import load_yaml_config
 
@@ -109,6 +111,26 @@ class AttackConfig:
     dodge_ahead_m: float = 1.8
     dodge_across_m: float = 0.7
     dodge_deg: float = 35.0
+    #: the ball within ``hold_guard_m`` of the torso for ``hold_guard_s`` (with gaps shorter
+    #: than the referee's 0.5 s reset) makes the player step back for ``back_off_s``: the
+    #: referee calls holding at 5 s within 0.12 m, and pushing the ball against an opponent
+    #: keeps it that close (0 s: never)
+    hold_guard_m: float = 0.15
+    hold_guard_s: float = 3.0
+    back_off_s: float = 1.0
+
+
+@dataclass(frozen=True)
+class SupportConfig:
+    """Where the second field player (the next-lowest claim after the active player) waits
+    for a loose ball: ``ahead_m`` beyond the ball towards the opponent goal and ``side_m`` to
+    one side of the dribble line (so it does not stand in the dribbler's way). ``ahead_m`` 0
+    and ``side_m`` 0: no support, it holds its formation place."""
+
+    ahead_m: float = 2.0
+    side_m: float = 1.5
+    #: it stays at least this far from the opponent goal line and the touch lines
+    margin_m: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -134,6 +156,7 @@ class StrategyConfig:
     formation: dict[int, tuple[float, float]] = field(default_factory=_default_formation)
     attack: AttackConfig = field(default_factory=AttackConfig)
     keeper: KeeperConfig = field(default_factory=KeeperConfig)
+    support: SupportConfig = field(default_factory=SupportConfig)
     #: the goalkeeper's unum (it guards its goal instead of attacking); None: no goalkeeper
     goalie_unum: int | None = 1
 
@@ -240,6 +263,37 @@ class StallWatch:
         return False
 
 
+class HoldWatch:
+    """Counts how long the ball has stayed close to the torso, forgiving short gaps the way
+    the referee's ball-holding rule does (its record restarts only after 0.5 s without
+    holding), so the player can let go before the referee calls the foul."""
+
+    #: a gap at least this long (s) restarts the count, as BallHoldResetTime does
+    RESET_S = 0.5
+
+    def __init__(self) -> None:
+        self._held_s = 0.0
+        self._free_s = 0.0
+        self._last: float | None = None
+
+    def reset(self) -> None:
+        self._held_s = self._free_s = 0.0
+        self._last = None
+
+    def update(self, now: float, holding: bool) -> float:
+        """Record whether the ball is held at ``now``; return the seconds held so far."""
+        dt = 0.0 if self._last is None else max(0.0, now - self._last)
+        self._last = now
+        if holding:
+            self._held_s += dt
+            self._free_s = 0.0
+        else:
+            self._free_s += dt
+            if self._free_s >= self.RESET_S:
+                self._held_s = 0.0
+        return self._held_s
+
+
 class Strategy:
     """Formation, beaming and role assignment for one agent."""
 
@@ -256,6 +310,9 @@ class Strategy:
         self._escape: tuple[float, float] | None = None
         #: a stall shot has started: basic_kick runs to its end while this player is active
         self._shooting = False
+        self._hold = HoldWatch()
+        #: until when (world time) the player steps back off a ball it has held too long
+        self._back_off_until: float | None = None
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``), any beam and the claim
@@ -266,6 +323,8 @@ class Strategy:
         active = self.is_active(world, claim)
         if not self._was_active:
             self._stall.reset()
+            self._hold.reset()
+            self._back_off_until = None
         if not active:
             self._shooting = False
         self._was_active = False
@@ -284,6 +343,8 @@ class Strategy:
             self._go_for_ball(world, behavior)
         elif self.is_goalie(world):
             self._guard_goal(world, behavior)
+        elif self.is_support(world, claim) and not opponents_restart(world.play_mode, world.side):
+            self._support(world, behavior)
         else:
             self._hold_position(world, behavior)
         say = None if claim is None or world.unum is None else claim_message(world.unum, claim)
@@ -330,6 +391,36 @@ class Strategy:
         )
         return not seen_closer and is_closest(self._claims, world.unum, claim, world.time)
 
+    def is_support(self, world, claim: float | None = None) -> bool:
+        """Whether this player supports the attack: it is not active, and exactly one
+        teammate claims the ball more strongly (lower claim, ties to the lower unum)."""
+        if claim is None or world.time is None or world.unum is None:
+            return False
+        support = self.config.support
+        if support.ahead_m <= 0.0 and support.side_m <= 0.0:
+            return False
+        mine = parse_claim(claim_message(world.unum, claim))
+        own = claim if mine is None else mine[1]
+        stronger = [
+            unum
+            for unum, other in self._claims.recent(world.time).items()
+            if unum != world.unum and (other, unum) < (own, world.unum)
+        ]
+        return len(stronger) == 1
+
+    def support_point(self, ball: tuple[float, float]) -> tuple[float, float]:
+        """Where the supporting player waits: ahead of the ball towards the opponent goal,
+        beside the line, on the side nearer the middle of the field, inside the field."""
+        support = self.config.support
+        heading = math.atan2(-ball[1], HALF_LENGTH - ball[0])
+        ux, uy = math.cos(heading), math.sin(heading)
+        side = -1.0 if ball[1] > 0.0 else 1.0
+        x = ball[0] + support.ahead_m * ux - side * support.side_m * uy
+        y = ball[1] + support.ahead_m * uy + side * support.side_m * ux
+        x = min(x, HALF_LENGTH - support.margin_m)
+        y_limit = HALF_WIDTH - support.margin_m
+        return x, max(-y_limit, min(y_limit, y))
+
     def _ball_threatens_goal(self, ball: tuple[float, float]) -> bool:
         own_goal = (-HALF_LENGTH, 0.0)
         return math.dist(ball, own_goal) < self.config.keeper.clear_range_m
@@ -368,6 +459,8 @@ class Strategy:
             return
         attack = self.config.attack
         bx, by = world.ball.position
+        if self._backing_off(world, (bx, by), behavior):
+            return
         goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
         to_goal = math.atan2(goal_y - by, goal_x - bx)
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
@@ -402,6 +495,41 @@ class Strategy:
                 behavior.execute("dribble", attack.dribble_kind, heading, "left")
                 return
         behavior.execute("walk", approach[0], approach[1], math.degrees(to_goal))
+
+    def _backing_off(self, world, ball: tuple[float, float], behavior) -> bool:
+        """Step straight back while the ball has been held too long (see
+        :attr:`AttackConfig.hold_guard_s`); True while doing so."""
+        attack = self.config.attack
+        now = world.time or 0.0
+        if self._back_off_until is not None and now < self._back_off_until:
+            self._backing_off_step(world, ball, behavior)
+            return True
+        self._back_off_until = None
+        if attack.hold_guard_s <= 0.0:
+            return False
+        gap = math.dist((world.pose.x, world.pose.y), ball)
+        if self._hold.update(now, gap < attack.hold_guard_m) < attack.hold_guard_s:
+            return False
+        self._hold.reset()
+        self._dribbling = False
+        self._back_off_until = now + attack.back_off_s
+        self._backing_off_step(world, ball, behavior)
+        return True
+
+    def _backing_off_step(self, world, ball: tuple[float, float], behavior) -> None:
+        """One cycle of stepping away from the ball: backwards in the robot frame, or with
+        only ``walk``, to a point 0.6 m from the ball on the far side from it."""
+        if "walk_velocity" in behavior.skill_names:
+            behavior.execute("walk_velocity", -0.3, 0.0, 0.0)
+            return
+        pose = world.pose
+        away = math.atan2(pose.y - ball[1], pose.x - ball[0])
+        behavior.execute(
+            "walk",
+            ball[0] + 0.6 * math.cos(away),
+            ball[1] + 0.6 * math.sin(away),
+            pose.heading_deg,
+        )
 
     def _escape_aim(
         self, world, ball: tuple[float, float], aim: tuple[float, float]
@@ -458,6 +586,16 @@ class Strategy:
             return
         y = max(-keeper.max_side_m, min(keeper.max_side_m, keeper.follow_fraction * ball[1]))
         behavior.execute("walk", x, y, _heading_to((x, y), ball))
+
+    def _support(self, world, behavior) -> None:
+        """Wait ahead of and beside the ball for a loose ball, facing the ball."""
+        if "walk" not in behavior.skill_names:
+            behavior.execute("pose", "stand")
+            return
+        x, y = self.support_point(world.ball.position)
+        step = HOLD_HEADING_STEP_DEG
+        heading = _heading_to((x, y), world.ball.position)
+        behavior.execute("walk", x, y, step * round(heading / step))
 
     def _hold_position(self, world, behavior) -> None:
         """Walk to the formation place and face the ball there (to keep seeing it)."""

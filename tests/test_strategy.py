@@ -11,8 +11,10 @@ import pytest
 from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
 from agent.strategy import (
     AttackConfig,
+    HoldWatch,
     Strategy,
     StrategyConfig,
+    SupportConfig,
     approach_point,
     dodge_heading,
 )
@@ -117,8 +119,10 @@ def test_a_player_with_a_closer_teammate_holds_its_formation_place_facing_the_ba
 def test_a_lower_claim_heard_from_a_teammate_keeps_the_player_back():
     behavior = RecordingBehavior("walk", "dribble")
     strategy = Strategy()
-    # nobody seen, but teammate 7 says it is 1.0 m from the ball: this player (2.0 m) holds
-    decision = strategy.decide(world((0.0, 0.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
+    # nobody seen, but teammates 7 and 8 say they are 1.0 and 1.5 m from the ball: this player
+    # (2.0 m, third) holds its place
+    claims = [said(7, 1.0), said(8, 1.5)]
+    decision = strategy.decide(world((0.0, 0.0), (-2.0, 0.0, 0.0), heard=claims), behavior)
     assert behavior.calls[-1][:3] == ("walk", *strategy.home(9))
     assert parse_claim(decision.say) == (9, 2.0)
     # the other team's claims do not count
@@ -264,3 +268,45 @@ def test_a_stall_near_the_goal_is_answered_with_a_shot_that_runs_to_its_end():
     scene.ball.position = (12.9, 0.1)  # the ball moved while the kick lines up: still kicking
     strategy.decide(scene, behavior)
     assert behavior.calls[-1][0] == "basic_kick"
+
+
+def test_the_second_closest_field_player_waits_ahead_of_the_ball_beside_the_line():
+    behavior = RecordingBehavior("walk", "dribble")
+    strategy = Strategy()
+    # teammate 7 is closer (active); this player is second: it supports
+    strategy.decide(world((0.0, 2.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
+    name, x, y, heading = behavior.calls[-1]
+    to_goal = math.atan2(-2.0, 15.0)
+    ahead = (x - 0.0) * math.cos(to_goal) + (y - 2.0) * math.sin(to_goal)
+    across = -(x - 0.0) * math.sin(to_goal) + (y - 2.0) * math.cos(to_goal)
+    assert name == "walk" and ahead == pytest.approx(2.0) and across == pytest.approx(-1.5)
+    assert abs(heading) > 90.0  # facing back towards the ball
+    # near the goal and a touch line it stays inside the field
+    x, y = strategy.support_point((14.5, -8.5))
+    assert x <= 14.0 and y >= -9.0
+    # support switched off: it holds its formation place
+    off = Strategy(StrategyConfig(support=SupportConfig(ahead_m=0.0, side_m=0.0)))
+    off.decide(world((0.0, 2.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
+    assert behavior.calls[-1][1:3] == off.home(9)
+
+
+def test_a_ball_held_at_the_feet_for_seconds_makes_the_player_step_back():
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "walk_velocity", "dribble")
+    rival = SimpleNamespace(unum=3, position=(0.25, 0.0))  # pushing the ball against it
+    scene = world((0.1, 0.0), (0.0, 0.0, 0.0), opponents=[rival])
+    names = []
+    for k in range(200):  # 4 s with the ball 0.1 m from the torso
+        scene.time = 10.0 + 0.02 * k
+        strategy.decide(scene, behavior)
+        names.append(behavior.calls[-1][0])
+    first = names.index("walk_velocity")
+    assert 140 <= first <= 155  # after about 3 s, well before the referee's 5 s
+    assert behavior.calls[-1] == ("walk_velocity", -0.3, 0.0, 0.0)
+    # short gaps (under the referee's 0.5 s reset) do not restart the count
+    watch = HoldWatch()
+    watch.update(0.0, True)
+    watch.update(1.0, True)
+    watch.update(1.3, False)
+    assert watch.update(2.0, True) == pytest.approx(1.7)
+    watch.update(2.1, False)
+    assert watch.update(2.7, False) == 0.0
