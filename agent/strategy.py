@@ -103,6 +103,9 @@ class AttackConfig:
     #: ... except within this distance of the goal centre (a keeper or defender blocking
     #: the way in), where a stall is answered with ``basic_kick`` at the goal instead
     stall_shot_m: float = 4.0
+    #: a stall shot that has not finished after this long (s) is given up for an escape: a
+    #: keeper at the ball keeps ``basic_kick`` lining up for ever (0: never give up)
+    shot_max_s: float = 8.0
     stall_m: float = 0.35
     escape_deg: float = 70.0
     escape_s: float = 3.0
@@ -310,6 +313,8 @@ class Strategy:
         self._escape: tuple[float, float] | None = None
         #: a stall shot has started: basic_kick runs to its end while this player is active
         self._shooting = False
+        #: when (world time) the stall shot started
+        self._shot_since = 0.0
         self._hold = HoldWatch()
         #: until when (world time) the player steps back off a ball it has held too long
         self._back_off_until: float | None = None
@@ -466,6 +471,9 @@ class Strategy:
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
         can_dribble = "dribble" in skills
         in_range = to_goal_m < attack.kick_range_m and to_goal_m >= attack.dribble_in_m
+        if self._shooting and self._shot_overdue(world, (bx, by)):
+            goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
+            to_goal = math.atan2(goal_y - by, goal_x - bx)
         if "basic_kick" in skills and (in_range or not can_dribble or self._shooting):
             self._dribbling = False
             finished = behavior.execute("basic_kick", goal_x, goal_y, "long")
@@ -541,11 +549,13 @@ class Strategy:
         at_ball = math.dist((world.pose.x, world.pose.y), ball) < attack.dribble_keep_m
         if not at_ball or attack.stall_s <= 0.0:
             self._stall.reset()  # walking up to a ball that lies still is no stall
-        elif self._escape is None and self._stall.stalled(
-            now, ball, attack.stall_s, attack.stall_m
+        elif (
+            self._escape is None
+            and not self._shooting
+            and self._stall.stalled(now, ball, attack.stall_s, attack.stall_m)
         ):
             if math.dist(ball, (HALF_LENGTH, 0.0)) < attack.stall_shot_m:
-                self._shooting = True
+                self._shooting, self._shot_since = True, now
             else:
                 self._escape = (now + attack.escape_s, self._escape_side(world, ball))
         if self._escape is None:
@@ -557,6 +567,17 @@ class Strategy:
         heading = math.atan2(aim[1] - ball[1], aim[0] - ball[0])
         heading += side * math.radians(attack.escape_deg)
         return (ball[0] + 5.0 * math.cos(heading), ball[1] + 5.0 * math.sin(heading))
+
+    def _shot_overdue(self, world, ball: tuple[float, float]) -> bool:
+        """End a stall shot running longer than :attr:`AttackConfig.shot_max_s` and start an
+        escape instead; True if it did."""
+        attack = self.config.attack
+        now = world.time or 0.0
+        if attack.shot_max_s <= 0.0 or now - self._shot_since < attack.shot_max_s:
+            return False
+        self._shooting = False
+        self._escape = (now + attack.escape_s, self._escape_side(world, ball))
+        return True
 
     def _escape_side(self, world, ball: tuple[float, float]) -> float:
         """+1 (to the left, team frame y up) or -1: away from the opponents near the ball,

@@ -310,3 +310,18 @@ def test_a_ball_held_at_the_feet_for_seconds_makes_the_player_step_back():
     assert watch.update(2.0, True) == pytest.approx(1.7)
     watch.update(2.1, False)
     assert watch.update(2.7, False) == 0.0
+
+
+def test_a_stall_shot_that_cannot_finish_is_given_up_for_an_escape():
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble", "basic_kick")
+    keeper = SimpleNamespace(unum=1, position=(12.8, 0.2))  # at the ball, never lets it go
+    scene = world((12.5, 0.0), (12.2, 0.0, 0.0), opponents=[keeper])
+    names = []
+    for k in range(800):  # 16 s: 4 s stall, 8 s of shot, then the escape
+        scene.time = 10.0 + 0.02 * k
+        strategy.decide(scene, behavior)
+        names.append(behavior.calls[-1][0])
+    assert "basic_kick" in names
+    last_kick = len(names) - 1 - names[::-1].index("basic_kick")
+    assert 560 <= last_kick <= 610  # about 4 s + 8 s after the start
+    assert names[-1] != "basic_kick"
