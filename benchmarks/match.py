@@ -8,7 +8,9 @@ forward first, then the goalkeeper, ...), renumbered 1..k with the formation pla
 types of the full team, so a 3 v 3 is a goalkeeper, a midfielder and a forward on each side.
 
 Run: ``.venv/bin/python benchmarks/match.py [--players 3] [--matches 4] [--duration 60]
-[--seed 0]``; prints one line per match and ``match_goals``, ``match_goals_per_match``,
+[--seed 0] [--config team.yaml] [--set strategy.attack.dribble_kind=lfdl ...]``
+(``--set`` overrides one key of the team file, both teams; the value is read as YAML);
+prints one line per match and ``match_goals``, ``match_goals_per_match``,
 ``match_with_goal``, ``match_right_team_goals`` (the right team plays the same code: a check
 that the two sides are symmetric), ``match_falls_per_player_minute``,
 ``match_realtime_factor``.
@@ -24,8 +26,14 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+import yaml
+
 from agent.match import run_match
 from agent.team import DEFAULT_ROBOT_TYPES, TeamConfig
+from world.yaml_config import config_from_mapping
+
+#: The team file played when no ``--config`` is given (it spells out the built-in defaults).
+DEFAULT_TEAM_FILE = Path(__file__).resolve().parents[1] / "config" / "team.yaml"
 
 #: Which formation places (unums of the full team) a smaller team fields, in order.
 LINEUP_ORDER: tuple[int, ...] = (10, 1, 7, 9, 11, 4, 5, 6, 8, 2, 3)
@@ -109,6 +117,23 @@ def play(
     )
 
 
+def team_with_overrides(path: str | Path, overrides: list[str]) -> TeamConfig:
+    """The team of the YAML file ``path`` with each ``dotted.key=value`` of ``overrides`` set
+    (the value read as YAML), checked as the file itself is: so a comparison of two settings
+    is one command line, not a hand-edited copy of the file."""
+    data = yaml.safe_load(Path(path).read_text()) or {}
+    for item in overrides:
+        key, sep, text = item.partition("=")
+        if not sep or not key:
+            raise ValueError(f"--set wants dotted.key=value, got {item!r}")
+        *parents, leaf = key.split(".")
+        node = data
+        for part in parents:
+            node = node.setdefault(part, {})
+        node[leaf] = yaml.safe_load(text)
+    return config_from_mapping(TeamConfig, data, source=f"{path} with {overrides}")
+
+
 def _players_near(session, point: tuple[float, float], radius: float) -> list[str]:
     """``L7@0.42``: team initial (of NaoLeft/NaoRight), unum and distance of each robot
     within ``radius`` of ``point``."""
@@ -130,13 +155,22 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0, help="seed of the first match")
     parser.add_argument("--config", help="team YAML (default: the built-in team)")
     parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a key of the team file, e.g. strategy.attack.dribble_kind=lfdl",
+    )
+    parser.add_argument(
         "--trace",
         type=float,
         default=0.0,
         help="print events and the ball's place every this many game seconds (0: off)",
     )
     args = parser.parse_args()
-    base = TeamConfig.from_yaml(args.config) if args.config else None
+    base = None
+    if args.config or args.set:
+        base = team_with_overrides(args.config or DEFAULT_TEAM_FILE, args.set)
     figures = []
     for k in range(args.matches):
         f = play(args.players, args.seed + k, args.duration, base, args.trace)
