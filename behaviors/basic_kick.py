@@ -227,11 +227,15 @@ def _distance_to_segment(
 class BasicKickSkill(Skill):
     """``execute("basic_kick", target_x, target_y, distance)``: walk, line up, kick towards the
     team-frame point; ``distance`` in metres or ``"long"``. Finished when the kick motion has
-    ended (the robot stands again)."""
+    ended (the robot stands again).
+
+    ``head_up_cycles`` (default :data:`HEAD_UP_CYCLES`) is the least wait in the stand before
+    the kick; benchmarks set it to measure how the kick's falls depend on its start."""
 
     name = "basic_kick"
 
-    def __init__(self) -> None:
+    def __init__(self, head_up_cycles: int = HEAD_UP_CYCLES) -> None:
+        self.head_up_cycles = head_up_cycles
         self.reset()
 
     def reset(self) -> None:
@@ -261,8 +265,8 @@ class BasicKickSkill(Skill):
         if self.phase == "head_up":
             robot = context.world.robot
             self._calm.add(robot.roll_deg, robot.pitch_deg)
-            waiting = self._head_up < HEAD_UP_CYCLES or not self._calm.calm
-            if waiting and self._head_up < CALM_MAX_CYCLES:
+            waiting = self._head_up < self.head_up_cycles or not self._calm.calm
+            if waiting and self._head_up < max(CALM_MAX_CYCLES, self.head_up_cycles):
                 # head level before the kick: it was tuned so (a head pitched down fell more)
                 self._head_up += 1
                 context.manager.execute_sub_behavior("pose", "stand")

@@ -368,11 +368,13 @@ def run_basic_trial(
     target_direction_deg: float,
     robot_type: int = 0,
     observe: Callable[[LocalAgent, str], None] | None = None,
+    head_up_cycles: int | None = None,
 ) -> BasicKickResult:
     """One basic kick: see :class:`BasicKickResult`. The robot stands at :data:`START`; the
     ball lies at ``ball_distance`` m and ``ball_bearing_deg`` from its facing; the target is
     ``asked`` m (10 m for "long") from the ball in ``target_direction_deg``. ``observe`` is
-    called after every cycle with the agent and the skill's phase in that cycle (traces)."""
+    called after every cycle with the agent and the skill's phase in that cycle (traces);
+    ``head_up_cycles`` replaces the skill's least wait before the kick (None: its default)."""
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     try:
         driver = stand_up(session, robot_type)
@@ -388,6 +390,8 @@ def run_basic_trial(
         cycles, contact, fell, finished = 0, None, False, False
         start = (bx, by)
         skill = driver.behavior.skill("basic_kick")
+        if head_up_cycles is not None:
+            skill.head_up_cycles = head_up_cycles  # type: ignore[attr-defined]
         placement = None
         while not finished and cycles < BASIC_KICK_TIMEOUT_CYCLES:
             before = session.ball.position()
@@ -437,6 +441,14 @@ def main() -> None:
     parser.add_argument(
         "--impact", action="store_true", help="foot and ball speeds at contact, then stop"
     )
+    parser.add_argument(
+        "--head-up-cycles",
+        type=int,
+        help="basic_kick's least stand wait before the kick (default: the skill's own)",
+    )
+    parser.add_argument(
+        "--layout-seed", type=int, default=0, help="draw another set of basic-kick layouts"
+    )
     args = parser.parse_args()
     if args.impact:
         impacts(args.seeds, args.robot_type, args.strengths or [1.0])
@@ -445,7 +457,14 @@ def main() -> None:
         stand_kicks(args.seeds, args.robot_type, args.strengths)
     if args.basic_trials:
         asked = args.basic_distance if args.basic_distance == "long" else float(args.basic_distance)
-        basic_kicks(args.basic_trials, args.robot_type, asked, args.basic_only)
+        basic_kicks(
+            args.basic_trials,
+            args.robot_type,
+            asked,
+            args.basic_only,
+            head_up_cycles=args.head_up_cycles,
+            seed=args.layout_seed,
+        )
 
 
 def basic_kick_figures(
@@ -455,13 +474,15 @@ def basic_kick_figures(
     seed: int = 0,
     verbose: bool = False,
     only: Collection[int] | None = None,
+    head_up_cycles: int | None = None,
 ) -> dict[str, float]:
     """``basic_kick`` from a stand, the ball 0.5-2 m away at random bearings (layouts drawn
     from ``seed``; trial ``k`` runs session seed ``k``): medians over the trials that kicked of
     ``basic_kick_distance_m``, ``basic_kick_direction_error_deg`` (absolute) and
     ``basic_kick_time_s`` (first ``basic_kick`` cycle to the ball moving), and the counts
     ``basic_kick_falls`` and ``basic_kick_misses`` (trials that never kicked). ``only``: run
-    just these trial numbers (same layouts); ``verbose`` prints each trial with its trace."""
+    just these trial numbers (same layouts); ``verbose`` prints each trial with its trace;
+    ``head_up_cycles``: see :func:`run_basic_trial`."""
     rng = np.random.default_rng(seed + 1)  # seed 0 keeps the layouts of earlier rounds
     results = []
     for k in range(trials):
@@ -469,7 +490,16 @@ def basic_kick_figures(
         if only is not None and k not in only:
             continue
         trace = BasicKickTrace() if verbose else None
-        results.append(run_basic_trial(distance, k, *layout, robot_type=robot_type, observe=trace))
+        results.append(
+            run_basic_trial(
+                distance,
+                k,
+                *layout,
+                robot_type=robot_type,
+                observe=trace,
+                head_up_cycles=head_up_cycles,
+            )
+        )
         if trace is not None:
             print(f"# trial {k}: {results[-1]}", flush=True)
             print(f"#   {trace.summary()}", flush=True)
@@ -488,10 +518,17 @@ def basic_kick_figures(
 
 
 def basic_kicks(
-    trials: int, robot_type: int, asked: float | str, only: Collection[int] | None = None
+    trials: int,
+    robot_type: int,
+    asked: float | str,
+    only: Collection[int] | None = None,
+    head_up_cycles: int | None = None,
+    seed: int = 0,
 ) -> None:
     """Print :func:`basic_kick_figures` as ``name[asked=...]: value`` lines."""
-    figures = basic_kick_figures(trials, robot_type, asked, verbose=True, only=only)
+    figures = basic_kick_figures(
+        trials, robot_type, asked, seed, True, only, head_up_cycles=head_up_cycles
+    )
     label = f"[asked={asked}]"
     for name, value in figures.items():
         if name in ("basic_kick_falls", "basic_kick_misses"):
