@@ -288,3 +288,24 @@ def test_get_up_after_a_physical_fall(robot_type):
     still up half a second later (the benchmark's rule; deterministic for a seed)."""
     results = [run_trial(robot_type, direction, seed=7) for direction in ("front", "back")]
     assert all(r.succeeded for r in results), results
+
+
+@pytest.mark.parametrize(
+    ("robot_type", "direction", "seed"), [(4, "front", 4000), (1, "right", 1015)]
+)
+def test_the_side_roll_turns_the_body_within_a_second(robot_type, direction, seed):
+    """Two benchmark falls that end on a side: the roll has the robot on its back or front and
+    its get-up started within 1.2 s (the roll swinging the upper arm and leg back alone left the
+    first one on its side for the whole 4 s and the second one until 1.4 s)."""
+    started: list[tuple[float, str | None]] = []
+
+    def observe(agent, cycle: int) -> None:
+        skill = agent.behavior.skill("get_up")
+        if skill.attempts == 2 and not started:
+            started.append((cycle * CYCLE_SECONDS, skill.lying_on))
+
+    result = run_trial(robot_type, direction, seed, observer=observe)
+    assert result.lying_on in ("left", "right")
+    assert started, "the robot was still on its side after the first roll"
+    second_attempt_s, side = started[0]
+    assert side in ("back", "front") and second_attempt_s < 1.2, started
