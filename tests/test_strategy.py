@@ -325,3 +325,28 @@ def test_a_stall_shot_that_cannot_finish_is_given_up_for_an_escape():
     last_kick = len(names) - 1 - names[::-1].index("basic_kick")
     assert 560 <= last_kick <= 610  # about 4 s + 8 s after the start
     assert names[-1] != "basic_kick"
+
+
+def test_a_ball_lost_under_the_robot_makes_it_step_back_not_turn_over_it():
+    behavior = RecordingBehavior("walk", "walk_velocity", "dribble")
+    under = world((0.1, 0.0), (0.0, 0.0, 0.0))
+    under.ball.time_since_seen = 4.0
+    Strategy().decide(under, behavior)
+    assert behavior.calls[-1] == ("walk_velocity", -0.3, 0.0, 0.0)
+
+
+def test_holding_time_counts_while_getting_up_on_the_ball():
+    class GetUpBehavior(RecordingBehavior):
+        def execute(self, name: str, *args: object) -> bool:
+            super().execute(name, *args)
+            return name == "get_up" and len(self.calls) >= 150  # up after 3 s
+
+    strategy, behavior = Strategy(), GetUpBehavior("walk", "walk_velocity", "dribble", "get_up")
+    scene = world((0.05, 0.0), (0.0, 0.0, 0.0))
+    scene.robot.is_fallen = True
+    for k in range(155):
+        scene.time = 10.0 + 0.02 * k
+        scene.robot.is_fallen = k < 100
+        strategy.decide(scene, behavior)
+    # up and over the ball after 3 s: it steps back at once instead of walking round it
+    assert behavior.calls[-1] == ("walk_velocity", -0.3, 0.0, 0.0)
