@@ -272,7 +272,7 @@ def test_a_stall_near_the_goal_is_answered_with_a_shot_that_runs_to_its_end():
 
 def test_the_second_closest_field_player_waits_ahead_of_the_ball_beside_the_line():
     behavior = RecordingBehavior("walk", "dribble")
-    strategy = Strategy()
+    strategy = Strategy(StrategyConfig(support=SupportConfig(ahead_m=2.0, side_m=1.5)))
     # teammate 7 is closer (active); this player is second: it supports
     strategy.decide(world((0.0, 2.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
     name, x, y, heading = behavior.calls[-1]
@@ -284,8 +284,8 @@ def test_the_second_closest_field_player_waits_ahead_of_the_ball_beside_the_line
     # near the goal and a touch line it stays inside the field
     x, y = strategy.support_point((14.5, -8.5))
     assert x <= 14.0 and y >= -9.0
-    # support switched off: it holds its formation place
-    off = Strategy(StrategyConfig(support=SupportConfig(ahead_m=0.0, side_m=0.0)))
+    # support switched off (the default): it holds its formation place
+    off = Strategy()
     off.decide(world((0.0, 2.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
     assert behavior.calls[-1][1:3] == off.home(9)
 
