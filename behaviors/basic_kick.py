@@ -62,10 +62,15 @@ READY_HEADING_DEG = 12.0
 BACK_OFF_M = 0.15
 #: How far (m) beyond the kicking spot the walk is sent (it stops up to 4 cm short of its
 #: target, ``behaviors.walk.ARRIVE_DISTANCE``): measured 3-5 cm short without it, and with 3 cm
-#: its last steps pushed the ball away at times.
+#: its last steps pushed the ball away at times. Even so the first settle measured the ball
+#: 2-5.7 cm further ahead than wanted in 9 of 9 layouts (fifth round), so a shuffle follows in
+#: almost every trial.
 WALK_OVERSHOOT_M = 0.015
 #: Cycles in the stand pose between the walk's stop and the kick: the walk stands with other
-#: angles, and the kick's weight shift from those tipped the robot over.
+#: angles, and the kick's weight shift from those tipped the robot over. Fifth round: ending
+#: this settle early once the torso was steady (2 deg range over 12 cycles, after 15 cycles;
+#: 0.5-0.9 s instead of 1.02) saved ~0.3 s a trial but the same 20 layouts fell 7 times
+#: instead of 2, 6 of them in the kick.
 SETTLE_CYCLES = 50
 #: When the straight way to the kicking spot passes closer than this (m) to the ball, the robot
 #: first walks round it, to a point ``DETOUR_BEHIND_M`` behind the ball and ``DETOUR_SIDE_M``
@@ -106,7 +111,9 @@ SHUFFLE_SETTLE_CYCLES = 15
 #: ``CALM_MAX_CYCLES`` in all. Why: the walk's stop and the shuffle leave the torso swaying a
 #: few degrees for a second or more, and the right kicks that started 15 cycles after the
 #: head-up into such a sway fell over the support foot (5 of 20, benchmarks/kick.py); the same
-#: layouts kicked 60 cycles later did not fall.
+#: layouts kicked 60 cycles later did not fall. But over all 20 layouts a 60-cycle wait fell 5
+#: times, not 2 (``benchmarks/kick.py --head-up-cycles 60``): the kick's falls depend on its
+#: start in ways a longer wait does not cure.
 HEAD_UP_CYCLES = 15
 CALM_MAX_CYCLES = 90
 #: Calm: the perceived torso roll and pitch each stayed within this range (deg) over the last
