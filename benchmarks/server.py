@@ -178,10 +178,12 @@ def networked22_figures(cycles: int) -> tuple[float, float]:
         rate = cycles / (time.perf_counter() - start)
         return rate, 1000.0 * (_cpu_seconds(server.pid) - start_cpu) / cycles
     finally:
-        for agent in agents:
-            agent.sock.close()
+        # the server goes first: closing sockets it still writes to would reset them, and the
+        # server would rightly log every agent as dropped
         server.terminate()
         server.wait(timeout=10)
+        for agent in agents:
+            agent.sock.close()
 
 
 def main() -> None:
