@@ -8,7 +8,7 @@ same bytes); nothing helps it along. Per trial: scored or not, game seconds from
 goal, falls.
 
 Run: ``.venv/bin/python benchmarks/attack.py [--trials 5] [--seconds 120] [--type 0] [--seed 0]
-[--config team.yaml]``;
+[--config team.yaml] [--set strategy.attack.KEY=VALUE ...]``;
 prints ``attack_goals``, ``attack_goal_rate``, ``attack_time_to_goal_s_median`` and
 ``attack_falls``.
 """
@@ -25,7 +25,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from agent.agent import Agent, AgentConfig
 from agent.strategy import Strategy, StrategyConfig
-from agent.team import TeamConfig
 from sim.physics import CYCLE_SECONDS
 from sim.session import Session, SessionConfig
 
@@ -80,8 +79,19 @@ def main() -> None:
     parser.add_argument("--type", type=int, default=0, help="robot type 0-4")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--config", help="team YAML whose strategy to use (default: built-in)")
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a key of the team file, e.g. strategy.attack.dribble_kind=dfdl",
+    )
     args = parser.parse_args()
-    strategy = TeamConfig.from_yaml(args.config).strategy if args.config else None
+    strategy = None
+    if args.config or args.set:
+        from benchmarks.match import DEFAULT_TEAM_FILE, team_with_overrides
+
+        strategy = team_with_overrides(args.config or DEFAULT_TEAM_FILE, args.set).strategy
     results = []
     for k in range(args.trials):
         result = run_attack(args.type, args.seed + k, args.seconds, strategy=strategy)

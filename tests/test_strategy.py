@@ -77,10 +77,10 @@ def test_active_player_approaches_behind_the_ball_facing_the_goal():
 
 
 def test_behind_the_ball_and_facing_the_goal_it_dribbles_and_keeps_dribbling():
-    strategy = Strategy(StrategyConfig(attack=AttackConfig(dribble_kind="lfdl")))
+    strategy = Strategy(StrategyConfig(attack=AttackConfig(dribble_kind="dfdl")))
     behavior = RecordingBehavior("walk", "dribble", "basic_kick")
     strategy.decide(world(ball=(0.0, 0.0), pose=(-0.3, 0.0, 5.0)), behavior)
-    assert behavior.calls[-1] == ("dribble", "lfdl", pytest.approx(0.0), "left")
+    assert behavior.calls[-1] == ("dribble", "dfdl", pytest.approx(0.0), "left")
     # the ball ran a little ahead and the robot turned: still its dribble, not a new approach
     strategy.decide(world(ball=(0.5, 0.0), pose=(0.0, 0.1, 40.0)), behavior)
     assert behavior.calls[-1][0] == "dribble"
@@ -98,13 +98,13 @@ def test_without_a_dribble_skill_it_kicks_anywhere():
 def test_by_default_it_dribbles_all_the_way_and_with_a_kick_range_it_shoots_in_range():
     behavior = RecordingBehavior("walk", "dribble", "basic_kick")
     Strategy().decide(world(ball=(10.0, 0.5), pose=(9.7, 0.5, 0.0)), behavior)
-    assert behavior.calls[-1][:2] == ("dribble", "dfdl")
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
     shooter = StrategyConfig(attack=AttackConfig(kick_range_m=7.0))
     Strategy(shooter).decide(world(ball=(10.0, 0.5), pose=(9.7, 0.5, 0.0)), behavior)
     assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
     # closer than dribble_in_m it walks the ball in even with a kick range
     Strategy(shooter).decide(world(ball=(13.0, 0.5), pose=(12.7, 0.5, -5.0)), behavior)
-    assert behavior.calls[-1][:2] == ("dribble", "dfdl")
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
 
 
 def test_a_player_with_a_closer_teammate_holds_its_formation_place_facing_the_ball():
@@ -214,7 +214,7 @@ def test_the_dribble_turns_away_from_an_opponent_in_the_way():
     strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
     rival = SimpleNamespace(unum=10, position=(1.2, 0.3))
     strategy.decide(world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival]), behavior)
-    assert behavior.calls[-1][:3] == ("dribble", "dfdl", pytest.approx(-35.0))
+    assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(-35.0))
 
 
 def test_a_player_that_lost_the_ball_turns_to_find_it_and_claims_nothing():

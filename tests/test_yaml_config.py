@@ -81,8 +81,8 @@ def test_match_team_takes_the_file_and_the_name(tmp_path):
     from agent.cli import _match_team
 
     path = tmp_path / "team.yaml"
-    path.write_text("name: Ignored\nstrategy:\n  attack:\n    dribble_kind: lfdl\n")
+    path.write_text("name: Ignored\nstrategy:\n  attack:\n    dribble_kind: dfdl\n")
     team = _match_team("Blue", str(path))
     assert team.name == "Blue"
-    assert team.strategy.attack.dribble_kind == "lfdl"
-    assert _match_team("Red", None).strategy.attack.dribble_kind == "dfdl"
+    assert team.strategy.attack.dribble_kind == "dfdl"
+    assert _match_team("Red", None).strategy.attack.dribble_kind == "lfdl"
