@@ -25,6 +25,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from agent.agent import Agent, AgentConfig
 from agent.strategy import Strategy, StrategyConfig
+from benchmarks.match import DEFAULT_TEAM_FILE, add_set_option, team_with_overrides
 from sim.physics import CYCLE_SECONDS
 from sim.session import Session, SessionConfig
 
@@ -79,18 +80,10 @@ def main() -> None:
     parser.add_argument("--type", type=int, default=0, help="robot type 0-4")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--config", help="team YAML whose strategy to use (default: built-in)")
-    parser.add_argument(
-        "--set",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="override a key of the team file, e.g. strategy.attack.dribble_kind=dfdl",
-    )
+    add_set_option(parser)
     args = parser.parse_args()
     strategy = None
     if args.config or args.set:
-        from benchmarks.match import DEFAULT_TEAM_FILE, team_with_overrides
-
         strategy = team_with_overrides(args.config or DEFAULT_TEAM_FILE, args.set).strategy
     results = []
     for k in range(args.trials):

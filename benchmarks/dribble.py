@@ -45,6 +45,7 @@ from behaviors.dribble import DRIBBLE_FILE
 from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
 from world.nao_model import ROBOT_TYPES
+from world.yaml_config import apply_overrides
 
 #: Cycle length (s).
 CYCLE = 0.02
@@ -250,17 +251,7 @@ def with_settings(overrides: list[str], folder: Path, source: Path = DRIBBLE_FIL
     """A copy of the gait settings ``source`` in ``folder`` with ``overrides`` applied: each
     ``dotted.key=value`` (value read as YAML) replaces or adds that key. Returns its path."""
     data: dict[str, Any] = yaml.safe_load(source.read_text()) or {}
-    for override in overrides:
-        dotted, sep, text = override.partition("=")
-        if not sep or not dotted:
-            raise ValueError(f"a setting is dotted.key=value, got {override!r}")
-        *parents, leaf = dotted.split(".")
-        node = data
-        for name in parents:
-            node = node.setdefault(name, {})
-            if not isinstance(node, dict):
-                raise ValueError(f"{dotted}: {name} is not a mapping in {source}")
-        node[leaf] = yaml.safe_load(text)
+    apply_overrides(data, overrides, str(source))
     path = folder / source.name
     path.write_text(yaml.safe_dump(data, sort_keys=False))
     return path

@@ -30,7 +30,7 @@ import yaml
 
 from agent.match import run_match
 from agent.team import DEFAULT_ROBOT_TYPES, TeamConfig
-from world.yaml_config import config_from_mapping
+from world.yaml_config import apply_overrides, config_from_mapping
 
 #: The team file played when no ``--config`` is given (it spells out the built-in defaults).
 DEFAULT_TEAM_FILE = Path(__file__).resolve().parents[1] / "config" / "team.yaml"
@@ -117,20 +117,23 @@ def play(
     )
 
 
+def add_set_option(parser: argparse.ArgumentParser) -> None:
+    """``--set KEY=VALUE`` (repeatable): a team-file key overridden for this run."""
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a key of the team file, e.g. strategy.attack.dribble_kind=dfdl",
+    )
+
+
 def team_with_overrides(path: str | Path, overrides: list[str]) -> TeamConfig:
     """The team of the YAML file ``path`` with each ``dotted.key=value`` of ``overrides`` set
     (the value read as YAML), checked as the file itself is: so a comparison of two settings
     is one command line, not a hand-edited copy of the file."""
     data = yaml.safe_load(Path(path).read_text()) or {}
-    for item in overrides:
-        key, sep, text = item.partition("=")
-        if not sep or not key:
-            raise ValueError(f"--set wants dotted.key=value, got {item!r}")
-        *parents, leaf = key.split(".")
-        node = data
-        for part in parents:
-            node = node.setdefault(part, {})
-        node[leaf] = yaml.safe_load(text)
+    apply_overrides(data, overrides, str(path))
     return config_from_mapping(TeamConfig, data, source=f"{path} with {overrides}")
 
 
@@ -154,13 +157,7 @@ def main() -> None:
     parser.add_argument("--duration", type=float, default=60.0, help="game seconds per match")
     parser.add_argument("--seed", type=int, default=0, help="seed of the first match")
     parser.add_argument("--config", help="team YAML (default: the built-in team)")
-    parser.add_argument(
-        "--set",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="override a key of the team file, e.g. strategy.attack.dribble_kind=lfdl",
-    )
+    add_set_option(parser)
     parser.add_argument(
         "--trace",
         type=float,

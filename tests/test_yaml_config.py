@@ -86,3 +86,16 @@ def test_match_team_takes_the_file_and_the_name(tmp_path):
     assert team.name == "Blue"
     assert team.strategy.attack.dribble_kind == "dfdl"
     assert _match_team("Red", None).strategy.attack.dribble_kind == "lfdl"
+
+
+def test_overrides_set_dotted_keys_and_refuse_bad_ones():
+    from world.yaml_config import apply_overrides
+
+    data = {"strategy": {"attack": {"dribble_kind": "lfdl", "stall_s": 4.0}}}
+    apply_overrides(data, ["strategy.attack.dribble_kind=dfdl", "strategy.keeper.max_side_m=1"])
+    assert data["strategy"]["attack"] == {"dribble_kind": "dfdl", "stall_s": 4.0}
+    assert data["strategy"]["keeper"] == {"max_side_m": 1}
+    with pytest.raises(ConfigError, match=r"dotted\.key=value"):
+        apply_overrides(data, ["strategy.attack.stall_s"])
+    with pytest.raises(ConfigError, match="not a mapping"):
+        apply_overrides(data, ["strategy.attack.stall_s.deep=1"], "team.yaml")

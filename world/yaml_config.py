@@ -37,6 +37,23 @@ def load_yaml_config(cls: type[T], path: str | Path) -> T:
     return config_from_mapping(cls, data, source=str(path))
 
 
+def apply_overrides(data: dict[str, Any], overrides: list[str], source: str = "<mapping>") -> None:
+    """Set each ``dotted.key=value`` of ``overrides`` in the nested mapping ``data`` (the value
+    read as YAML, missing levels created), so that comparing two settings is one command line
+    (``--set``) rather than a hand-edited copy of a settings file."""
+    for item in overrides:
+        dotted, sep, text = item.partition("=")
+        if not sep or not dotted:
+            raise ConfigError(f"a setting is dotted.key=value, got {item!r}")
+        *parents, leaf = dotted.split(".")
+        node = data
+        for name in parents:
+            node = node.setdefault(name, {})
+            if not isinstance(node, dict):
+                raise ConfigError(f"{dotted}: {name} is not a mapping in {source}")
+        node[leaf] = yaml.safe_load(text)
+
+
 def config_from_mapping(cls: type[T], data: Any, source: str = "<mapping>") -> T:
     """Build ``cls`` from ``data``, checking keys and value types."""
     if not isinstance(data, Mapping):
