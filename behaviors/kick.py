@@ -37,6 +37,7 @@ from behaviors.joint_control import JointCommands
 from behaviors.keyframes import KeyframePlayer, KeyframeSequence, mirrored, parse_sequences
 from behaviors.poses import DATA_DIR, PoseError, check_fields, check_number, read_yaml_mapping
 from behaviors.skill import Skill, SkillContext
+from world.perception import ForceResistance
 
 KICKS_FILE = DATA_DIR / "kicks.yaml"
 #: The name of the packaged left-foot kick; the right foot plays its mirror image.
@@ -54,6 +55,16 @@ BALANCE_LIMIT_DEG = 16.0
 #: Degrees of support-ankle roll per deg/s of torso roll rate (gyro), added to the roll term:
 #: damping, so the correction acts while the lean is still growing rather than after.
 BALANCE_DAMPING = 0.0
+#: Degrees of support-ankle roll per centimetre the support foot's centre of pressure (FRP
+#: perceptor) lies outwards of the foot's centre line, subtracted from the roll terms. Why: the
+#: ankle can only push while the pressure stays inside the foot; in falling kicks the roll term
+#: drove the pressure to the foot's edge (1 cm steps, the edge at 4 cm) and the foot then tipped
+#: over that edge, rolling the robot sideways. Moving the ankle against the pressure's offset
+#: keeps it inside the sole.
+COP_GAIN = 0.0
+#: Below this normal force (N) the support foot's pressure point is not trusted (a foot in the
+#: air or barely touching reports a meaningless point).
+COP_MIN_FORCE_N = 10.0
 
 
 @dataclass(frozen=True)
@@ -240,7 +251,9 @@ class KickSkill(Skill):
         self._done = self._player.step(context.commands, robot.joints_deg)
         assert self._balance is not None
         roll_rate = float(robot.gyro_deg_s[1])  # + = rolling to the right
-        self._balance.correct(context.commands, elapsed, robot.roll_deg, roll_rate)
+        # the pressure term is off by default; only then is the FRP perceptor read
+        cop = self._balance.support_cop_outwards_cm(robot.foot_pressure) if COP_GAIN else None
+        self._balance.correct(context.commands, elapsed, robot.roll_deg, roll_rate, cop)
         return self._done
 
 
@@ -259,13 +272,30 @@ class _OneLegBalance:
         self._end = sequence.duration - frames[-1].total
         self._mirror = mirror
         self._joints = ("llj6", "llj2") if mirror else ("rlj6", "rlj2")
+        #: the support foot's FRP perceptor; its +x points to the robot's right, i.e. outwards
+        #: for the right (support) foot of the left kick
+        self._foot = "lf" if mirror else "rf"
         self._reference: float | None = None
         #: the support ankle's roll target of the last gain-tracked frame (predictive frames
         #: send speeds, not targets)
         self._last_targets = dict.fromkeys(self._joints, 0.0)
 
+    def support_cop_outwards_cm(self, pressure: Mapping[str, ForceResistance]) -> float | None:
+        """Centimetres the support foot's centre of pressure lies outwards of its centre line
+        (away from the kicking foot), or None while the foot bears too little weight."""
+        frp = pressure.get(self._foot)
+        if frp is None or frp.force[2] < COP_MIN_FORCE_N:
+            return None
+        lateral_cm = 100.0 * frp.contact[0]
+        return -lateral_cm if self._mirror else lateral_cm
+
     def correct(
-        self, commands: JointCommands, elapsed: float, roll_deg: float, roll_rate: float = 0.0
+        self,
+        commands: JointCommands,
+        elapsed: float,
+        roll_deg: float,
+        roll_rate: float = 0.0,
+        cop_outwards_cm: float | None = None,
     ) -> None:
         if not self._start <= elapsed < self._end:
             return
@@ -274,6 +304,8 @@ class _OneLegBalance:
         if self._reference is None:
             self._reference = roll
         correction = BALANCE_GAIN * (roll - self._reference) + BALANCE_DAMPING * rate
+        if cop_outwards_cm is not None:
+            correction -= COP_GAIN * cop_outwards_cm
         correction = max(-BALANCE_LIMIT_DEG, min(BALANCE_LIMIT_DEG, correction))
         if self._mirror:
             correction = -correction  # roll joints change sign in the mirror image

@@ -48,6 +48,7 @@ import pybullet
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+import behaviors.kick as kick_module
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.kick import KickMotion, kick_motion
 from learning.local_agent import LocalAgent
@@ -449,7 +450,14 @@ def main() -> None:
     parser.add_argument(
         "--layout-seed", type=int, default=0, help="draw another set of basic-kick layouts"
     )
+    parser.add_argument(
+        "--cop-gain",
+        type=float,
+        help="the kick's one-leg balance COP_GAIN for this run (default: the module's own)",
+    )
     args = parser.parse_args()
+    if args.cop_gain is not None:
+        kick_module.COP_GAIN = args.cop_gain  # a trial setting for this process only
     if args.impact:
         impacts(args.seeds, args.robot_type, args.strengths or [1.0])
         return
