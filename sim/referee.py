@@ -14,9 +14,9 @@ is on purpose, and said so:
   kick-offs, set pieces and drop balls are cleared, and robots lying too long or crowding their
   own penalty area are taken off, with the real parameters, each rule switchable. Differences
   there: a robot's extent is a fixed square around its torso, not its colliders' box; a moved
-  robot is not nudged off another robot it lands on ("safe reposition"); a moved robot's joints
-  keep their speeds (the real server stops every body); the touching and charging fouls, which
-  need robot-robot contacts, are not implemented.
+  robot is not nudged off another robot it lands on ("safe reposition"); the touching and
+  charging fouls, which need robot-robot contacts, are not implemented. A moved robot is
+  stopped, every body part, as on the real server (``SimRobot.translate``).
 - Only the kicking team's touch ends a set piece; the real server accepts any touch, as it has
   cleared the opponents away (here too, unless the clearing is switched off).
 - ``kick_off(None)`` within a half, after that half's first kick-off, gives the kick-off to the

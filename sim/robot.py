@@ -656,8 +656,14 @@ class SimRobot:
             pybullet.resetJointState(self.body_id, index, value, 0.0, physicsClientId=self._client)
 
     def translate(self, x: float, y: float, z: float) -> None:
-        """Move the torso to (x, y, z) keeping orientation and joint angles; stop the base."""
+        """Move the torso to (x, y, z) keeping orientation and joint angles, and stop every
+        body part, as the real server's agent move does (base and joint velocities zeroed;
+        the speed commands stay, so the motors go on as commanded)."""
         self._reset_base((x, y, z), self._base_pose()[1])
+        cid = self._client
+        states = pybullet.getJointStates(self.body_id, self._joint_indices, physicsClientId=cid)
+        for index, state in zip(self._joint_indices, states, strict=True):
+            pybullet.resetJointState(self.body_id, index, state[0], 0.0, physicsClientId=cid)
 
     def _reset_base(self, position: Vec3, quat: tuple[float, ...]) -> None:
         cid = self._client

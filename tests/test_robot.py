@@ -162,3 +162,27 @@ def test_restored_world_continues_bit_for_bit(world) -> None:
     assert robot.force_resistance()  # it stood on the ground throughout
     for a, b in zip(original, restored, strict=True):
         assert a == b
+
+
+def test_translate_keeps_the_pose_and_stops_every_body_part() -> None:
+    """The referee's and the trainer's position-only moves stop the robot as the real server's
+    agent move does: joint angles and orientation kept, base and joint velocities zeroed."""
+    world = PhysicsWorld(substeps=2)  # no ground: free fall, so nothing but the motors moves it
+    robot = SimRobot(world, 0)
+    robot.place(0.0, 0.0, 50.0, yaw_deg=30.0)
+    robot.set_joint_speeds({"he1": 3.0, "lle4": -2.0})
+    _run(world, robot, 5)
+    angles = robot.joint_angles_deg()
+    client, body = world.client, robot.body_id
+    joints = range(pybullet.getNumJoints(body, physicsClientId=client))
+    assert max(abs(pybullet.getJointState(body, j, physicsClientId=client)[1]) for j in joints) > 1
+    robot.translate(3.0, -2.0, 40.0)
+    assert robot.torso_position() == pytest.approx((3.0, -2.0, 40.0))
+    assert robot.joint_angles_deg() == pytest.approx(angles)
+    speeds = [pybullet.getJointState(body, j, physicsClientId=client)[1] for j in joints]
+    assert max(abs(v) for v in speeds) == 0.0
+    linear, angular = pybullet.getBaseVelocity(body, physicsClientId=client)
+    assert max(abs(v) for v in (*linear, *angular)) == 0.0
+    _run(world, robot, 3)  # the speed commands stay: the motors go on
+    assert robot.joint_angles_deg()["hj1"] > angles["hj1"] + 10.0
+    world.close()
