@@ -60,7 +60,9 @@ BALANCE_DAMPING = 0.0
 #: ankle can only push while the pressure stays inside the foot; in falling kicks the roll term
 #: drove the pressure to the foot's edge (1 cm steps, the edge at 4 cm) and the foot then tipped
 #: over that edge, rolling the robot sideways. Moving the ankle against the pressure's offset
-#: keeps it inside the sole.
+#: keeps it inside the sole. Off: 2 made basic kicks far worse (``benchmarks/kick.py --strengths
+#: --basic-trials 20 --basic-distance 3 --cop-gain 2``: 18 falls of 20; ``--layout-seed 1``: 12),
+#: so the sign or the size of this term is still wrong.
 COP_GAIN = 0.0
 #: Below this normal force (N) the support foot's pressure point is not trusted (a foot in the
 #: air or barely touching reports a meaningless point).
