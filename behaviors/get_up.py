@@ -14,6 +14,9 @@ The get-up sequences use predictive tracking (``track: predictive`` in
 ``behaviors/data/get_up.yaml``, see :mod:`behaviors.keyframes`): a whole-body motion that lags
 four cycles behind its keyframes, as the gain-0.25 controller does, loses the momentum it needs.
 
+A sequence named in :data:`RISE_BALANCE` (type 4's back get-up) closes the loop during its
+rise: the hip pitch joints aim further forward in proportion to the torso's backward lean.
+
 Sequences are looked up per robot type first (``get_up_front_type3``), then by the common name
 (``get_up_front``), so a type whose longer legs need other angles overrides only what differs.
 """
@@ -22,6 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.keyframes import KeyframePlayer, KeyframeSequence, default_sequences, mirrored
@@ -58,6 +62,50 @@ ABORT_TILT_DEG = 75.0
 ABORT_BACK_DEG = 40.0
 
 
+@dataclass(frozen=True)
+class RiseBalance:
+    """A balance correction while a get-up rises: the hip and ankle pitch joints aim further
+    forward in proportion to how far the torso (from the IMU's tilt estimate) leans back past
+    ``setpoint_deg``. Why: type 4 comes up to 0.6 of standing height in the crouch, then tips
+    slowly backwards (pitch -13 to -50 deg) and lies again; a fixed pose that is forward enough
+    for those falls throws the others onto their faces, a correction from the measured lean
+    moves only as far as each fall needs.
+
+    It acts from frame ``from_frame`` on. The offset is handed to the keyframe player as a
+    measured angle that lags the real one, so it works the same for predictive and gain frames.
+    """
+
+    from_frame: int
+    #: torso pitch (deg, positive forwards) below which the correction starts
+    setpoint_deg: float
+    #: degrees of joint offset per degree of backward lean, by joint (both legs)
+    gains: Mapping[str, float]
+    #: the offset never exceeds this many degrees
+    max_offset_deg: float
+
+    def offsets(self, pitch_deg: float) -> dict[str, float]:
+        """Joint offsets (deg) for the torso's pitch now: zero while it leans back less than
+        the setpoint, then proportional, clipped."""
+        lean_back = max(0.0, self.setpoint_deg - pitch_deg)
+        return {
+            name: min(self.max_offset_deg, gain * lean_back) for name, gain in self.gains.items()
+        }
+
+
+#: Balance corrections by sequence name (only where they were measured to help; round three
+#: found a closed-loop rise on type 0 front falls made it worse, so none is global).
+RISE_BALANCE: Mapping[str, RiseBalance] = MappingProxyType(
+    {
+        "get_up_back_type4": RiseBalance(
+            from_frame=4,
+            setpoint_deg=-3.0,
+            gains=MappingProxyType({"llj3": 4.0, "rlj3": 4.0}),
+            max_offset_deg=40.0,
+        ),
+    }
+)
+
+
 def feet_load(state: RobotState) -> float:
     """Total vertical force (N) on the foot and toe pressure sensors."""
     return sum(max(0.0, reading.force[2]) for reading in state.foot_pressure.values())
@@ -90,6 +138,9 @@ class _Attempt:
     abort_after_s: float | None = None
     #: ... and from which a torso leaning back too far ends it
     lean_abort_after_s: float | None = None
+    #: the balance correction of this sequence (None: plays open loop) and from when it acts
+    balance: RiseBalance | None = None
+    balance_after_s: float = 0.0
     settled_cycles: int = 0
     waited_cycles: int = 0
 
@@ -166,10 +217,17 @@ class GetUpSkill(Skill):
                 if side == "back"
                 else (FRONT_UP_FRAMES, FRONT_UP_FRAMES)
             )
+            balance = RISE_BALANCE.get(sequence.name)
             self._attempt = _Attempt(
                 player,
                 abort_after_s=sum(frame.total for frame in sequence.frames[:sat_up]),
                 lean_abort_after_s=sum(frame.total for frame in sequence.frames[:folded]),
+                balance=balance,
+                balance_after_s=(
+                    0.0
+                    if balance is None
+                    else sum(frame.total for frame in sequence.frames[: balance.from_frame])
+                ),
             )
 
     def _play(self, context: SkillContext, state: RobotState) -> bool:
@@ -180,7 +238,7 @@ class GetUpSkill(Skill):
             self._attempt = _Attempt()  # lying again: settle briefly and start over
             self._hold_still(context, state)
             return False
-        finished = player.step(context.commands, state.joints_deg)
+        finished = player.step(context.commands, self._balanced_joints(state))
         if not attempt.rolling and self._in_final_hold(player) and robot_stands(state):
             self._attempt = _Attempt()  # up: the rest of the last hold only keeps the pose
             return True
@@ -206,6 +264,21 @@ class GetUpSkill(Skill):
             and state.pitch_deg < -ABORT_BACK_DEG
         )
         return lying or tipping
+
+    def _balanced_joints(self, state: RobotState) -> Mapping[str, float]:
+        """The measured joint angles as the player should see them: with a balance correction
+        active, the corrected joints read short by their offset, so the player (predictive or
+        gain tracking alike) drives them that much beyond its keyframe targets."""
+        attempt = self._attempt
+        assert attempt.player is not None
+        balance = attempt.balance
+        if balance is None or attempt.player.elapsed < attempt.balance_after_s:
+            return state.joints_deg
+        joints = dict(state.joints_deg)
+        for name, offset in balance.offsets(state.pitch_deg).items():
+            if name in joints:
+                joints[name] -= offset
+        return joints
 
     @staticmethod
     def _in_final_hold(player: KeyframePlayer) -> bool:
