@@ -62,7 +62,7 @@ BALANCE_DAMPING = 0.0
 #: over that edge, rolling the robot sideways. Moving the ankle against the pressure's offset
 #: keeps it inside the sole. Off: 2 made basic kicks far worse (``benchmarks/kick.py --strengths
 #: --basic-trials 20 --basic-distance 3 --cop-gain 2``: 18 falls of 20; ``--layout-seed 1``: 12),
-#: so the sign or the size of this term is still wrong.
+#: so the sign or the size of this term is still wrong. A skill's own ``cop_gain`` overrides it.
 COP_GAIN = 0.0
 #: Below this normal force (N) the support foot's pressure point is not trusted (a foot in the
 #: air or barely touching reports a meaningless point).
@@ -223,10 +223,12 @@ class KickSkill(Skill):
 
     name = "kick"
 
-    def __init__(self) -> None:
+    def __init__(self, cop_gain: float = COP_GAIN) -> None:
         self._player: KeyframePlayer | None = None
         self._done = False
         self._balance: _OneLegBalance | None = None
+        #: the one-leg balance's centre-of-pressure gain (:data:`COP_GAIN`; trials set their own)
+        self.cop_gain = cop_gain
         #: the kick motions to choose from (None: the packaged ones); searches set their own
         self.motions: Mapping[str, KickMotion] | None = None
 
@@ -254,8 +256,12 @@ class KickSkill(Skill):
         assert self._balance is not None
         roll_rate = float(robot.gyro_deg_s[1])  # + = rolling to the right
         # the pressure term is off by default; only then is the FRP perceptor read
-        cop = self._balance.support_cop_outwards_cm(robot.foot_pressure) if COP_GAIN else None
-        self._balance.correct(context.commands, elapsed, robot.roll_deg, roll_rate, cop)
+        cop = None
+        if self.cop_gain:
+            cop = self._balance.support_cop_outwards_cm(robot.foot_pressure)
+        self._balance.correct(
+            context.commands, elapsed, robot.roll_deg, roll_rate, cop, self.cop_gain
+        )
         return self._done
 
 
@@ -298,6 +304,7 @@ class _OneLegBalance:
         roll_deg: float,
         roll_rate: float = 0.0,
         cop_outwards_cm: float | None = None,
+        cop_gain: float = COP_GAIN,
     ) -> None:
         if not self._start <= elapsed < self._end:
             return
@@ -307,7 +314,7 @@ class _OneLegBalance:
             self._reference = roll
         correction = BALANCE_GAIN * (roll - self._reference) + BALANCE_DAMPING * rate
         if cop_outwards_cm is not None:
-            correction -= COP_GAIN * cop_outwards_cm
+            correction -= cop_gain * cop_outwards_cm
         correction = max(-BALANCE_LIMIT_DEG, min(BALANCE_LIMIT_DEG, correction))
         if self._mirror:
             correction = -correction  # roll joints change sign in the mirror image

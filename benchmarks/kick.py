@@ -48,7 +48,6 @@ import pybullet
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-import behaviors.kick as kick_module
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.kick import KickMotion, kick_motion
 from learning.local_agent import LocalAgent
@@ -79,9 +78,41 @@ class KickResult:
     ball_side_m: float
 
 
-def stand_up(session: Session, robot_type: int) -> LocalAgent:
-    """Join a robot at :data:`START`, rise slowly into ``stand`` and hold it half a second."""
-    return LocalAgent.join(session, "Kickers", 1, robot_type, beam=START).rise_to_stand()
+def _median(values: list[float]) -> float:
+    """The median, NaN for no values (a run where nothing was kicked still prints its lines)."""
+    return float(statistics.median(values)) if values else math.nan
+
+
+@dataclass(frozen=True)
+class SkillSettings:
+    """Trial settings of the kick skills for one benchmark run (None: the skill's own), set on
+    the robot's skills where it is stood up, so every trial of the run uses them and nothing
+    outside the run changes."""
+
+    #: ``basic_kick``'s least wait in the stand before the kick (cycles)
+    head_up_cycles: int | None = None
+    #: ``kick``'s one-leg balance centre-of-pressure gain (see ``behaviors.kick.COP_GAIN``)
+    cop_gain: float | None = None
+
+    def apply(self, driver: LocalAgent) -> None:
+        if self.head_up_cycles is not None:
+            basic_kick = driver.behavior.skill("basic_kick")
+            basic_kick.head_up_cycles = self.head_up_cycles  # type: ignore[attr-defined]
+        if self.cop_gain is not None:
+            driver.behavior.skill("kick").cop_gain = self.cop_gain  # type: ignore[attr-defined]
+
+
+DEFAULT_SETTINGS = SkillSettings()
+
+
+def stand_up(
+    session: Session, robot_type: int, settings: SkillSettings = DEFAULT_SETTINGS
+) -> LocalAgent:
+    """Join a robot at :data:`START` with ``settings`` on its skills, rise slowly into ``stand``
+    and hold it half a second."""
+    driver = LocalAgent.join(session, "Kickers", 1, robot_type, beam=START)
+    settings.apply(driver)
+    return driver.rise_to_stand()
 
 
 def place_ball_in_front_of(
@@ -130,6 +161,7 @@ def run_trial(
     observe: Callable[[Session, SimRobot], None] | None = None,
     side_error: float = 0.0,
     wait_cycles: int = 1,
+    settings: SkillSettings = DEFAULT_SETTINGS,
 ) -> KickResult:
     """One kick from a stand; see the module docstring for what is measured. The ball lies
     where the kick expects it (its ``ball_gap_m``, ``ball_side_m``) plus ``gap_error`` m
@@ -137,10 +169,11 @@ def run_trial(
     kicks (searches); ``observe`` is called after every kick cycle with the session and the
     robot (impact measurements). ``wait_cycles``: cycles in ``stand`` between the placement and
     the kick; why it matters: the robot still sways a little after rising, and a kick 30 cycles
-    later went 2.3-3.7 m instead of 3.0-3.1 m (the kick is that sensitive to its start)."""
+    later went 2.3-3.7 m instead of 3.0-3.1 m (the kick is that sensitive to its start).
+    ``settings``: the run's skill settings."""
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     try:
-        driver = stand_up(session, robot_type)
+        driver = stand_up(session, robot_type, settings)
         driver.behavior.skill("kick").motions = motions
         motion = kick_motion(robot_type, motions)
         robot = session.agents[driver.agent].robot
@@ -238,18 +271,21 @@ def measure_impact(
     seed: int = 0,
     robot_type: int = 0,
     motions: Mapping[str, KickMotion] | None = None,
+    settings: SkillSettings = DEFAULT_SETTINGS,
 ) -> ImpactResult:
     """A stand kick (:func:`run_trial`) with the foot and ball speeds around the contact."""
     recorder = _ImpactRecorder(foot)
-    kick = run_trial(foot, strength, seed, robot_type, 0.0, motions, recorder)
+    kick = run_trial(foot, strength, seed, robot_type, 0.0, motions, recorder, settings=settings)
     return recorder.result(kick)
 
 
-def impacts(seeds: int, robot_type: int, strengths: list[float]) -> None:
+def impacts(
+    seeds: int, robot_type: int, strengths: list[float], settings: SkillSettings = DEFAULT_SETTINGS
+) -> None:
     """Print foot and ball speeds at contact per strength (medians over seeds and feet)."""
     for strength in strengths:
         results = [
-            measure_impact(foot, strength, seed, robot_type)
+            measure_impact(foot, strength, seed, robot_type, settings=settings)
             for seed in range(seeds)
             for foot in ("left", "right")
         ]
@@ -261,15 +297,11 @@ def impacts(seeds: int, robot_type: int, strengths: list[float]) -> None:
                 f"hip/knee/ankle {joints} deg/s, {r.kick.distance_m:.2f} m",
                 flush=True,
             )
-
-        def median(values: list[float]) -> float:
-            return statistics.median(values)
-
         label = f"[strength={strength:g}]"
-        print(f"kick_foot_speed_m_s{label}: {median([r.foot_speed_m_s for r in results]):.2f}")
-        print(f"kick_ball_speed_m_s{label}: {median([r.ball_speed_m_s for r in results]):.2f}")
-        print(f"kick_speed_ratio{label}: {median([r.ratio for r in results]):.2f}")
-        print(f"kick_distance_m{label}: {median([r.kick.distance_m for r in results]):.2f}")
+        print(f"kick_foot_speed_m_s{label}: {_median([r.foot_speed_m_s for r in results]):.2f}")
+        print(f"kick_ball_speed_m_s{label}: {_median([r.ball_speed_m_s for r in results]):.2f}")
+        print(f"kick_speed_ratio{label}: {_median([r.ratio for r in results]):.2f}")
+        print(f"kick_distance_m{label}: {_median([r.kick.distance_m for r in results]):.2f}")
 
 
 @dataclass(frozen=True)
@@ -369,16 +401,16 @@ def run_basic_trial(
     target_direction_deg: float,
     robot_type: int = 0,
     observe: Callable[[LocalAgent, str], None] | None = None,
-    head_up_cycles: int | None = None,
+    settings: SkillSettings = DEFAULT_SETTINGS,
 ) -> BasicKickResult:
     """One basic kick: see :class:`BasicKickResult`. The robot stands at :data:`START`; the
     ball lies at ``ball_distance`` m and ``ball_bearing_deg`` from its facing; the target is
     ``asked`` m (10 m for "long") from the ball in ``target_direction_deg``. ``observe`` is
     called after every cycle with the agent and the skill's phase in that cycle (traces);
-    ``head_up_cycles`` replaces the skill's least wait before the kick (None: its default)."""
+    ``settings``: the run's skill settings."""
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     try:
-        driver = stand_up(session, robot_type)
+        driver = stand_up(session, robot_type, settings)
         robot = driver.robot
         angle = math.radians(START[2] + ball_bearing_deg)
         bx = START[0] + ball_distance * math.cos(angle)
@@ -391,8 +423,6 @@ def run_basic_trial(
         cycles, contact, fell, finished = 0, None, False, False
         start = (bx, by)
         skill = driver.behavior.skill("basic_kick")
-        if head_up_cycles is not None:
-            skill.head_up_cycles = head_up_cycles  # type: ignore[attr-defined]
         placement = None
         while not finished and cycles < BASIC_KICK_TIMEOUT_CYCLES:
             before = session.ball.position()
@@ -453,16 +483,15 @@ def main() -> None:
     parser.add_argument(
         "--cop-gain",
         type=float,
-        help="the kick's one-leg balance COP_GAIN for this run (default: the module's own)",
+        help="the kick's one-leg balance COP_GAIN for this run (default: the skill's own)",
     )
     args = parser.parse_args()
-    if args.cop_gain is not None:
-        kick_module.COP_GAIN = args.cop_gain  # a trial setting for this process only
+    settings = SkillSettings(head_up_cycles=args.head_up_cycles, cop_gain=args.cop_gain)
     if args.impact:
-        impacts(args.seeds, args.robot_type, args.strengths or [1.0])
+        impacts(args.seeds, args.robot_type, args.strengths or [1.0], settings)
         return
     if args.strengths:
-        stand_kicks(args.seeds, args.robot_type, args.strengths)
+        stand_kicks(args.seeds, args.robot_type, args.strengths, settings)
     if args.basic_trials:
         asked = args.basic_distance if args.basic_distance == "long" else float(args.basic_distance)
         basic_kicks(
@@ -470,7 +499,7 @@ def main() -> None:
             args.robot_type,
             asked,
             args.basic_only,
-            head_up_cycles=args.head_up_cycles,
+            settings=settings,
             seed=args.layout_seed,
         )
 
@@ -482,7 +511,7 @@ def basic_kick_figures(
     seed: int = 0,
     verbose: bool = False,
     only: Collection[int] | None = None,
-    head_up_cycles: int | None = None,
+    settings: SkillSettings = DEFAULT_SETTINGS,
 ) -> dict[str, float]:
     """``basic_kick`` from a stand, the ball 0.5-2 m away at random bearings (layouts drawn
     from ``seed``; trial ``k`` runs session seed ``k``): medians over the trials that kicked of
@@ -490,7 +519,7 @@ def basic_kick_figures(
     ``basic_kick_time_s`` (first ``basic_kick`` cycle to the ball moving), and the counts
     ``basic_kick_falls`` and ``basic_kick_misses`` (trials that never kicked). ``only``: run
     just these trial numbers (same layouts); ``verbose`` prints each trial with its trace;
-    ``head_up_cycles``: see :func:`run_basic_trial`."""
+    ``settings``: the run's skill settings."""
     rng = np.random.default_rng(seed + 1)  # seed 0 keeps the layouts of earlier rounds
     results = []
     for k in range(trials):
@@ -505,21 +534,17 @@ def basic_kick_figures(
                 *layout,
                 robot_type=robot_type,
                 observe=trace,
-                head_up_cycles=head_up_cycles,
+                settings=settings,
             )
         )
         if trace is not None:
             print(f"# trial {k}: {results[-1]}", flush=True)
             print(f"#   {trace.summary()}", flush=True)
     kicked = [r for r in results if r.time_to_kick_s is not None]
-
-    def median(values: list[float]) -> float:
-        return float(statistics.median(values)) if values else math.nan
-
     return {
-        "basic_kick_distance_m": median([r.distance_m for r in kicked]),
-        "basic_kick_direction_error_deg": median([abs(r.direction_error_deg) for r in kicked]),
-        "basic_kick_time_s": median([r.time_to_kick_s for r in kicked]),  # type: ignore[misc]
+        "basic_kick_distance_m": _median([r.distance_m for r in kicked]),
+        "basic_kick_direction_error_deg": _median([abs(r.direction_error_deg) for r in kicked]),
+        "basic_kick_time_s": _median([r.time_to_kick_s for r in kicked]),  # type: ignore[misc]
         "basic_kick_falls": float(sum(r.fell for r in results)),
         "basic_kick_misses": float(len(results) - len(kicked)),
     }
@@ -530,13 +555,11 @@ def basic_kicks(
     robot_type: int,
     asked: float | str,
     only: Collection[int] | None = None,
-    head_up_cycles: int | None = None,
+    settings: SkillSettings = DEFAULT_SETTINGS,
     seed: int = 0,
 ) -> None:
     """Print :func:`basic_kick_figures` as ``name[asked=...]: value`` lines."""
-    figures = basic_kick_figures(
-        trials, robot_type, asked, seed, True, only, head_up_cycles=head_up_cycles
-    )
+    figures = basic_kick_figures(trials, robot_type, asked, seed, True, only, settings)
     label = f"[asked={asked}]"
     for name, value in figures.items():
         if name in ("basic_kick_falls", "basic_kick_misses"):
@@ -551,7 +574,9 @@ def basic_kicks(
 STAND_KICK_WAITS = (1, 30, 65, 15, 45, 90)
 
 
-def stand_kicks(seeds: int, robot_type: int, strengths: list[float]) -> None:
+def stand_kicks(
+    seeds: int, robot_type: int, strengths: list[float], settings: SkillSettings = DEFAULT_SETTINGS
+) -> None:
     """``kick`` from a stand with the ball placed at the foot: distance per strength, over
     ``seeds`` starts (:data:`STAND_KICK_WAITS`, the ball up to 1 cm off along and 5 mm
     across) and both feet."""
@@ -566,21 +591,26 @@ def stand_kicks(seeds: int, robot_type: int, strengths: list[float]) -> None:
                 side = rng.uniform(-0.005, 0.005)
                 mine.append(
                     run_trial(
-                        foot, strength, seed, robot_type, error, side_error=side, wait_cycles=wait
+                        foot,
+                        strength,
+                        seed,
+                        robot_type,
+                        error,
+                        side_error=side,
+                        wait_cycles=wait,
+                        settings=settings,
                     )
                 )
         results += mine
         print(f"kick_distance_m[strength={strength:g}]: "
-              f"{statistics.median(r.distance_m for r in mine):.2f}")  # fmt: skip
+              f"{_median([r.distance_m for r in mine]):.2f}")  # fmt: skip
         print(f"kick_falls[strength={strength:g}]: {sum(r.fell for r in mine)} of {len(mine)}")
     moved = [r for r in results if r.time_to_contact_s is not None]
     errors = [abs(r.direction_deg) for r in moved]
     times = [r.time_to_contact_s for r in moved]
-    print(
-        f"kick_direction_error_deg_median: {statistics.median(errors) if errors else math.nan:.1f}"
-    )
+    print(f"kick_direction_error_deg_median: {_median(errors):.1f}")
     print(f"kick_falls: {sum(r.fell for r in results)} of {len(results)}")
-    print(f"kick_time_s: {statistics.median(times) if times else math.nan:.2f}")
+    print(f"kick_time_s: {_median(times):.2f}")
     print(f"kick_ball_untouched: {len(results) - len(moved)}")
 
 
