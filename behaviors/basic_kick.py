@@ -132,32 +132,29 @@ class Alignment:
     across_m: float
     heading_deg: float
 
+    def within(self, along_m: float, across_m: float) -> bool:
+        """The ball within ``along_m``/``across_m`` of where the kick wants it and the heading
+        within :data:`READY_HEADING_DEG` (every tolerance below shares the heading bound)."""
+        return (
+            abs(self.along_m) < along_m
+            and abs(self.across_m) < across_m
+            and abs(self.heading_deg) < READY_HEADING_DEG
+        )
+
     @property
     def fine(self) -> bool:
         """Lined up well enough for the kick's full distance and direction."""
-        return (
-            abs(self.along_m) < FINE_ALONG_M
-            and abs(self.across_m) < FINE_ACROSS_M
-            and abs(self.heading_deg) < READY_HEADING_DEG
-        )
+        return self.within(FINE_ALONG_M, FINE_ACROSS_M)
 
     @property
     def within_shuffle(self) -> bool:
         """Close enough for :class:`FootShuffle` steps to finish the alignment."""
-        return (
-            abs(self.along_m) < SHUFFLE_REACH_M
-            and abs(self.across_m) < SHUFFLE_REACH_M
-            and abs(self.heading_deg) < READY_HEADING_DEG
-        )
+        return self.within(SHUFFLE_REACH_M, SHUFFLE_REACH_M)
 
     @property
     def ready(self) -> bool:
         """Close enough to kick."""
-        return (
-            abs(self.along_m) < READY_ALONG_M
-            and abs(self.across_m) < READY_ACROSS_M
-            and abs(self.heading_deg) < READY_HEADING_DEG
-        )
+        return self.within(READY_ALONG_M, READY_ACROSS_M)
 
 
 def strength_for(motion: KickMotion, distance: float | str) -> float:
