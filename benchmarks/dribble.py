@@ -25,6 +25,13 @@ the distance, counts add up). ``--set dfdl.controller.default.speed=0.8`` (repea
 the gaits with a setting of ``behaviors/data/dribble.yaml`` changed (a copy in a temporary
 folder; the file itself is untouched), so that tuning trials are repo commands too;
 ``--jobs 2`` runs the seeds in parallel processes.
+
+``--angles 90 180 -90`` starts each run with the direction to dribble at that angle (deg, +
+= to the left) from the robot's first heading, the ball still 0.3 m ahead of it: the next
+issue's episodes dribble at a random direction from -180 to 180 deg, so the gait must turn the
+ball round. Those runs report per angle (``[angle=90]``) and add ``first_metre_s``: seconds
+until the ball first lay 1 m along the new direction from its start (mean over the runs that
+got there; ``first_metre_reached`` counts them).
 """
 
 from __future__ import annotations
@@ -72,7 +79,11 @@ class DribbleRun:
     robot_type: int
     foot: str
     direction_deg: float
+    #: the direction's angle from the robot's first heading (deg, + = left)
+    start_angle_deg: float = 0.0
     seconds: float = 0.0
+    #: seconds until the ball first lay 1 m along the direction from its start (None: never)
+    first_metre_s: float | None = None
     distance: float = 0.0  # metres the ball travelled along the direction
     reached: bool = False
     fell: bool = False
@@ -168,15 +179,18 @@ def run_dribble(
     seed: int = 0,
     max_seconds: float | None = None,
     data_file: Path = DRIBBLE_FILE,
+    start_angle_deg: float = 0.0,
 ) -> DribbleRun:
     """Dribble until the ball travelled ``distance`` m along ``direction_deg`` (or fell, or
-    ``max_seconds``, by default the time at 0.2 m/s), with the gait settings of
-    ``data_file``."""
-    session, agent = start_dribble_episode(robot_type, direction_deg, seed)
-    result = DribbleRun(kind, robot_type, foot, direction_deg)
+    ``max_seconds``, by default the time at 0.2 m/s plus 2 s, plus 4 s per 90 deg of
+    ``start_angle_deg``), with the gait settings of ``data_file``. The robot starts facing
+    ``start_angle_deg`` to the right of the direction, the ball 0.3 m ahead of it."""
+    session, agent = start_dribble_episode(robot_type, direction_deg - start_angle_deg, seed)
+    result = DribbleRun(kind, robot_type, foot, direction_deg, start_angle_deg)
     skill = agent.behavior.skill("dribble")
     skill.data_file = data_file
-    limit = max_seconds if max_seconds is not None else distance / 0.2 + 2.0
+    turn_allowance = 4.0 * abs(start_angle_deg) / 90.0
+    limit = max_seconds if max_seconds is not None else distance / 0.2 + 2.0 + turn_allowance
     h = math.radians(direction_deg)
     ux, uy = math.cos(h), math.sin(h)
     holding = _Holding()
@@ -203,6 +217,8 @@ def run_dribble(
             elif lost and gap < REGAINED_DISTANCE and ahead > 0.0:
                 lost = False
             result.distance = ux * (bx - start_x) + uy * (by - start_y)
+            if result.first_metre_s is None and result.distance >= 1.0:
+                result.first_metre_s = result.seconds
             if agent.robot.has_fallen():
                 result.fell = True
                 break
@@ -222,6 +238,8 @@ def report_lines(runs: list[DribbleRun]) -> list[str]:
     first = runs[0]
     key = f"{first.kind}_{first.foot}" if first.foot != "left" else first.kind
     t = f"type{first.robot_type}"
+    if first.start_angle_deg:
+        t += f"][angle={first.start_angle_deg:g}"
     reached = [r.speed for r in runs if r.reached]
     lines = [
         f"{key}_mps[{t}]: {statistics.mean(reached) if reached else 0.0:.3f}",
@@ -234,6 +252,13 @@ def report_lines(runs: list[DribbleRun]) -> list[str]:
         f"{key}_holding_fouls[{t}]: {sum(r.holding_fouls for r in runs)}",
         f"{key}_max_held_s[{t}]: {max(r.max_held_s for r in runs):.2f}",
     ]
+    if first.start_angle_deg:
+        firsts = [r.first_metre_s for r in runs if r.first_metre_s is not None]
+        mean_first = statistics.mean(firsts) if firsts else 0.0
+        lines.append(f"{key}_first_metre_reached[{t}]: {len(firsts)}/{len(runs)}")
+        lines.append(f"{key}_first_metre_s[{t}]: {mean_first:.2f}")
+        lines.append(f"{key}_first_metre_s_max[{t}]: {max(firsts, default=0.0):.2f}")
+        return lines  # the per-phase distances are a straight dribble's figure
     pooled: dict[tuple[int, bool], list[float]] = defaultdict(list)
     for run in runs:
         for phase, distances in run.phase_distances.items():
@@ -257,9 +282,18 @@ def with_settings(overrides: list[str], folder: Path, source: Path = DRIBBLE_FIL
     return path
 
 
-def _run_one(arguments: tuple[str, int, float, str, float, int, Path]) -> DribbleRun:
-    kind, robot_type, distance, foot, direction, seed, data_file = arguments
-    return run_dribble(kind, robot_type, distance, foot, direction, seed, data_file=data_file)
+def _run_one(arguments: tuple[str, int, float, str, float, int, Path, float]) -> DribbleRun:
+    kind, robot_type, distance, foot, direction, seed, data_file, angle = arguments
+    return run_dribble(
+        kind,
+        robot_type,
+        distance,
+        foot,
+        direction,
+        seed,
+        data_file=data_file,
+        start_angle_deg=angle,
+    )
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -270,6 +304,9 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--distance", type=float, default=10.0)
     parser.add_argument("--direction", type=float, default=0.0)
     parser.add_argument("--seeds", type=int, nargs="+", default=[0])
+    parser.add_argument(
+        "--angles", type=float, nargs="+", default=[0.0], help="start angles (deg, + = left)"
+    )
     parser.add_argument("--set", action="append", default=[], metavar="DOTTED.KEY=VALUE")
     parser.add_argument("--jobs", type=int, default=1)
     args = parser.parse_args(argv)
@@ -278,12 +315,13 @@ def main(argv: list[str] | None = None) -> None:
         with ProcessPoolExecutor(max(args.jobs, 1)) as pool:
             for robot_type in args.types:
                 for kind in args.kinds:
-                    jobs = [
-                        (kind, robot_type, args.distance, args.foot, args.direction, s, data_file)
-                        for s in args.seeds
-                    ]
-                    for line in report_lines(list(pool.map(_run_one, jobs))):
-                        print(line, flush=True)
+                    for angle in args.angles:
+                        common = (args.distance, args.foot, args.direction)
+                        jobs = [
+                            (kind, robot_type, *common, s, data_file, angle) for s in args.seeds
+                        ]
+                        for line in report_lines(list(pool.map(_run_one, jobs))):
+                            print(line, flush=True)
 
 
 if __name__ == "__main__":
