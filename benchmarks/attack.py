@@ -5,10 +5,14 @@ its formation place before kick-off and stands; then the referee gives the left 
 kick-off and the game runs until the left team scores or ``--seconds`` of game time pass. The
 agent sees only its perceptions and acts only through its effectors, exactly as over TCP (the
 same bytes); nothing helps it along. Per trial: scored or not, game seconds from kick-off to the
-goal, falls.
+goal, falls (the attacker's).
+
+``--keeper``: the right team fields its goalkeeper (unum 1, the same strategy and skills), so
+the attacker has to beat a keeper that guards its line and comes out for the ball: the
+situation in which matches stall near the goal.
 
 Run: ``.venv/bin/python benchmarks/attack.py [--trials 5] [--seconds 120] [--type 0] [--seed 0]
-[--config team.yaml] [--set strategy.attack.KEY=VALUE ...]``;
+[--keeper] [--config team.yaml] [--set strategy.attack.KEY=VALUE ...]``;
 prints ``attack_goals``, ``attack_goal_rate``, ``attack_time_to_goal_s_median`` and
 ``attack_falls``.
 """
@@ -47,22 +51,26 @@ def run_attack(
     seconds: float,
     unum: int = 10,
     strategy: StrategyConfig | None = None,
+    keeper: bool = False,
 ) -> AttackResult:
     """One trial; see the module docstring."""
     session = Session(SessionConfig(seed=seed))
     try:
-        agent = Agent(AgentConfig("Attackers", unum, robot_type), Strategy(strategy))
-        slot = session.add_agent()
-        session.handle_message(slot, agent.greeting())
+        agents = {}
+        configs = [AgentConfig("Attackers", unum, robot_type)]
+        if keeper:
+            configs.append(AgentConfig("Keepers", 1, robot_type))
+        for config in configs:  # the attackers join first: they play from the left
+            slot = session.add_agent()
+            agents[slot] = Agent(config, Strategy(strategy))
+            session.handle_message(slot, agents[slot].greeting())
         for _ in range(PREPARE_CYCLES):
-            session.step()
-            session.handle_message(slot, agent.think(session.perception(slot)))
+            _step(session, agents)
         session.trainer("(playMode KickOff_Left)")
-        robot = session.agents[slot].robot
+        robot = session.agents[next(iter(agents))].robot
         falls, was_fallen = 0, False
         for cycle in range(round(seconds / CYCLE_SECONDS)):
-            session.step()
-            session.handle_message(slot, agent.think(session.perception(slot)))
+            _step(session, agents)
             fallen = robot.has_fallen()
             falls += fallen and not was_fallen
             was_fallen = fallen
@@ -73,12 +81,22 @@ def run_attack(
         session.close()
 
 
+def _step(session: Session, agents: dict[int, Agent]) -> None:
+    """One server cycle; every agent answers its perception."""
+    session.step()
+    for slot, agent in agents.items():
+        session.handle_message(slot, agent.think(session.perception(slot)))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--trials", type=int, default=5)
     parser.add_argument("--seconds", type=float, default=120.0, help="game seconds per trial")
     parser.add_argument("--type", type=int, default=0, help="robot type 0-4")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument(
+        "--keeper", action="store_true", help="the right team fields its goalkeeper"
+    )
     parser.add_argument("--config", help="team YAML whose strategy to use (default: built-in)")
     add_set_option(parser)
     args = parser.parse_args()
@@ -87,7 +105,9 @@ def main() -> None:
         strategy = team_with_overrides(args.config or DEFAULT_TEAM_FILE, args.set).strategy
     results = []
     for k in range(args.trials):
-        result = run_attack(args.type, args.seed + k, args.seconds, strategy=strategy)
+        result = run_attack(
+            args.type, args.seed + k, args.seconds, strategy=strategy, keeper=args.keeper
+        )
         results.append(result)
         time_text = f"{result.time_to_goal_s:.1f} s" if result.scored else "no goal"
         print(f"# trial {k}: {time_text}, falls {result.falls}", flush=True)
