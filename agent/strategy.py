@@ -30,6 +30,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
+from behaviors.basic_kick import expected_ball_ego
+from behaviors.kick import FEET, kick_motion
 from world.field_geometry import GOAL_WIDTH, HALF_LENGTH, HALF_WIDTH
 from world.localization import wrap_deg
 from world.yaml_config import load_yaml_config
@@ -132,6 +134,23 @@ class AttackConfig:
     hold_guard_m: float = 0.15
     hold_guard_s: float = 3.0
     back_off_s: float = 1.0
+    #: a snap shot: with the ball within ``snap_range_m`` of the goal centre, lying within
+    #: ``snap_along_m`` / ``snap_across_m`` of where a foot's stand kick wants it and the
+    #: robot facing into the goal mouth (the heading's line crossing the goal line at least
+    #: ``snap_post_margin_m`` inside the posts), the player kicks at once with the stand kick
+    #: at full strength instead of dribbling on into the keeper or lining up ``basic_kick``
+    #: (0: never). Why: ``basic_kick`` takes about 10 s to line up, long enough for the
+    #: keeper to come out and stop the ball; the LFDL dribble carries the ball about 6 cm
+    #: beyond the left foot's kick spot, so a loose ``snap_along_m`` takes it mid-dribble.
+    #: Before the kick the robot stops (``walk_velocity`` 0 for ``snap_stop_s``, then the
+    #: stand pose for ``snap_stand_s``) and kicks only if the ball still lies at the spot:
+    #: kicked straight out of the walk, it fell (benchmarks/attack.py --keeper --trace 1.5)
+    snap_range_m: float = 0.0
+    snap_along_m: float = 0.08
+    snap_across_m: float = 0.04
+    snap_post_margin_m: float = 0.2
+    snap_stop_s: float = 0.4
+    snap_stand_s: float = 0.5
 
 
 @dataclass(frozen=True)
@@ -332,6 +351,10 @@ class Strategy:
         self._hold = HoldWatch()
         #: until when (world time) the player steps back off a ball it has held too long
         self._back_off_until: float | None = None
+        #: the foot of a snap shot's kick under way (it plays to its end), else None
+        self._snap_foot: str | None = None
+        #: a snap shot stopping to kick: when (world time) the stop began
+        self._snap_stop_since: float | None = None
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``), any beam and the claim
@@ -344,9 +367,19 @@ class Strategy:
             self._stall.reset()
         if not active:
             self._shooting = False
+            self._snap_stop_since = None
         self._was_active = False
         held_s = self._count_holding(world)
-        if "get_up" in behavior.skill_names and (world.robot.is_fallen or self._getting_up):
+        if world.robot.is_fallen:
+            self._snap_foot = self._snap_stop_since = None
+        if self._snap_stop_since is not None:
+            self._was_active = True
+            self._snap_stop(world, behavior)
+        elif self._snap_foot is not None:
+            # a started kick plays to its end: stopping it halfway leaves the robot on one leg
+            if behavior.execute("kick", self._snap_foot, 1.0):
+                self._snap_foot = None
+        elif "get_up" in behavior.skill_names and (world.robot.is_fallen or self._getting_up):
             # once started, the get-up runs until it reports the robot standing: halfway up
             # (sitting, torso 50 deg from vertical) the robot no longer counts as fallen, and
             # walking off from there drops it again
@@ -486,6 +519,11 @@ class Strategy:
             return
         attack = self.config.attack
         bx, by = world.ball.position
+        if "kick" in skills and self.snap_foot(world) is not None:
+            self._dribbling = self._shooting = False
+            self._snap_stop_since = world.time or 0.0
+            self._snap_stop(world, behavior)
+            return
         goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
         to_goal = math.atan2(goal_y - by, goal_x - bx)
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
@@ -523,6 +561,52 @@ class Strategy:
                 behavior.execute("dribble", attack.dribble_kind, heading, "left")
                 return
         behavior.execute("walk", approach[0], approach[1], math.degrees(to_goal))
+
+    def snap_foot(self, world) -> str | None:
+        """The foot for a snap shot now (see :attr:`AttackConfig.snap_range_m`), or None: the
+        ball is near the goal, at a foot's kick spot, and the robot faces into the goal."""
+        attack = self.config.attack
+        ball, pose = world.ball.position, world.pose
+        if attack.snap_range_m <= 0.0 or ball is None or pose is None:
+            return None
+        if math.dist(ball, (HALF_LENGTH, 0.0)) > attack.snap_range_m or ball[0] >= HALF_LENGTH:
+            return None
+        heading = math.radians(pose.heading_deg)
+        if math.cos(heading) <= 0.1:
+            return None
+        cross_y = ball[1] + (HALF_LENGTH - ball[0]) * math.tan(heading)
+        if abs(cross_y) > GOAL_WIDTH / 2 - attack.snap_post_margin_m:
+            return None
+        rx, ry = ball[0] - pose.x, ball[1] - pose.y
+        ahead = rx * math.cos(heading) + ry * math.sin(heading)
+        left = -rx * math.sin(heading) + ry * math.cos(heading)
+        robot_type = getattr(world.robot, "robot_type", 0)
+        for foot in FEET:
+            spot_ahead, spot_left = expected_ball_ego(robot_type, foot, kick_motion(robot_type))
+            if (
+                abs(ahead - spot_ahead) < attack.snap_along_m
+                and abs(left - spot_left) < attack.snap_across_m
+            ):
+                return foot
+        return None
+
+    def _snap_stop(self, world, behavior) -> None:
+        """One cycle of a snap shot's stop: step to a halt, stand, then kick with the foot the
+        ball lies at, or give up (the ball has moved off the spot) and play on."""
+        attack = self.config.attack
+        elapsed = (world.time or 0.0) - (self._snap_stop_since or 0.0)
+        if elapsed < attack.snap_stop_s and "walk_velocity" in behavior.skill_names:
+            behavior.execute("walk_velocity", 0.0, 0.0, 0.0)
+            return
+        if elapsed < attack.snap_stop_s + attack.snap_stand_s:
+            behavior.execute("pose", "stand")
+            return
+        self._snap_stop_since = None
+        self._snap_foot = self.snap_foot(world)
+        if self._snap_foot is None:
+            behavior.execute("pose", "stand")
+        elif behavior.execute("kick", self._snap_foot, 1.0):
+            self._snap_foot = None
 
     def _count_holding(self, world) -> float:
         """Seconds this player has had the ball within :attr:`AttackConfig.hold_guard_m` of

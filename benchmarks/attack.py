@@ -52,8 +52,10 @@ def run_attack(
     unum: int = 10,
     strategy: StrategyConfig | None = None,
     keeper: bool = False,
+    trace_every_s: float = 0.0,
 ) -> AttackResult:
-    """One trial; see the module docstring."""
+    """One trial; see the module docstring. With ``trace_every_s`` it prints, that often, the
+    ball's place and each robot's place and current skill (to see where an attack stalls)."""
     session = Session(SessionConfig(seed=seed))
     try:
         agents = {}
@@ -71,6 +73,8 @@ def run_attack(
         falls, was_fallen = 0, False
         for cycle in range(round(seconds / CYCLE_SECONDS)):
             _step(session, agents)
+            if trace_every_s and cycle % max(1, round(trace_every_s / CYCLE_SECONDS)) == 0:
+                _trace(session, agents)
             fallen = robot.has_fallen()
             falls += fallen and not was_fallen
             was_fallen = fallen
@@ -88,6 +92,22 @@ def _step(session: Session, agents: dict[int, Agent]) -> None:
         session.handle_message(slot, agent.think(session.perception(slot)))
 
 
+def _trace(session: Session, agents: dict[int, Agent]) -> None:
+    """``# t ... ball x y | A10 x y skill | K1 ...`` (true places, field frame)."""
+    x, y, _ = session.ball.position()
+    parts = [f"#   t {session.referee.game_time:6.1f} ball {x:6.2f} {y:5.2f}"]
+    for slot, agent in agents.items():
+        robot = session.agents[slot].robot
+        rx, ry = robot.torso_position()[:2]
+        run = agent.behavior.current
+        skill = run.name if run is not None else "-"
+        fallen = " fallen" if robot.has_fallen() else ""
+        parts.append(
+            f"{agent.config.team_name[0]}{agent.config.unum} {rx:6.2f} {ry:5.2f} {skill}{fallen}"
+        )
+    print(" | ".join(parts), flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--trials", type=int, default=5)
@@ -96,6 +116,9 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument(
         "--keeper", action="store_true", help="the right team fields its goalkeeper"
+    )
+    parser.add_argument(
+        "--trace", type=float, default=0.0, help="print the scene every this many seconds"
     )
     parser.add_argument("--config", help="team YAML whose strategy to use (default: built-in)")
     add_set_option(parser)
@@ -106,7 +129,12 @@ def main() -> None:
     results = []
     for k in range(args.trials):
         result = run_attack(
-            args.type, args.seed + k, args.seconds, strategy=strategy, keeper=args.keeper
+            args.type,
+            args.seed + k,
+            args.seconds,
+            strategy=strategy,
+            keeper=args.keeper,
+            trace_every_s=args.trace,
         )
         results.append(result)
         time_text = f"{result.time_to_goal_s:.1f} s" if result.scored else "no goal"

@@ -350,3 +350,65 @@ def test_holding_time_counts_while_getting_up_on_the_ball():
         strategy.decide(scene, behavior)
     # up and over the ball after 3 s: it steps back at once instead of walking round it
     assert behavior.calls[-1] == ("walk_velocity", -0.3, 0.0, 0.0)
+
+
+def _snap_world(ball, pose, time=10.0):
+    """A world with the robot type the snap shot reads the kick spot for."""
+    w = world(ball=ball, pose=pose)
+    w.robot = SimpleNamespace(is_fallen=False, robot_type=0)
+    w.time = time
+    return w
+
+
+def test_a_ball_at_the_left_kick_spot_near_the_goal_stops_the_player_then_it_kicks_to_the_end():
+    from behaviors.basic_kick import expected_ball_ego
+    from behaviors.kick import kick_motion
+
+    ahead, left = expected_ball_ego(0, "left", kick_motion(0))
+    snapper = Strategy(StrategyConfig(attack=AttackConfig(snap_range_m=3.5)))
+    behavior = RecordingBehavior("walk", "walk_velocity", "dribble", "basic_kick", "kick")
+    pose, ball = (12.5, 0.0, 0.0), (12.5 + ahead + 0.05, left)
+    snapper.decide(_snap_world(ball, pose, 10.0), behavior)
+    assert behavior.calls[-1] == ("walk_velocity", 0.0, 0.0, 0.0)
+    snapper.decide(_snap_world(ball, pose, 10.6), behavior)
+    assert behavior.calls[-1] == ("pose", "stand")
+    snapper.decide(_snap_world(ball, pose, 11.0), behavior)
+    assert behavior.calls[-1] == ("kick", "left", 1.0)
+    # the kick plays on although the ball has gone (kicked) and the player is no longer at it
+    snapper.decide(_snap_world((14.0, 0.0), pose, 11.1), behavior)
+    assert behavior.calls[-1] == ("kick", "left", 1.0)
+
+
+def test_a_snap_shot_whose_ball_rolled_off_the_spot_while_stopping_is_given_up():
+    from behaviors.basic_kick import expected_ball_ego
+    from behaviors.kick import kick_motion
+
+    ahead, left = expected_ball_ego(0, "left", kick_motion(0))
+    snapper = Strategy(StrategyConfig(attack=AttackConfig(snap_range_m=3.5)))
+    behavior = RecordingBehavior("walk", "walk_velocity", "dribble", "basic_kick", "kick")
+    pose = (12.5, 0.0, 0.0)
+    snapper.decide(_snap_world((12.5 + ahead, left), pose, 10.0), behavior)
+    snapper.decide(_snap_world((13.2, 0.0), pose, 11.0), behavior)
+    assert behavior.calls[-1] == ("pose", "stand")
+    snapper.decide(_snap_world((13.2, 0.0), pose, 11.1), behavior)
+    assert behavior.calls[-1][0] in ("walk", "dribble")
+
+
+def test_no_snap_shot_off_the_spot_facing_past_the_post_far_from_goal_or_by_default():
+    from behaviors.basic_kick import expected_ball_ego
+    from behaviors.kick import kick_motion
+
+    ahead, left = expected_ball_ego(0, "right", kick_motion(0))
+    snapper = Strategy(StrategyConfig(attack=AttackConfig(snap_range_m=3.5)))
+    at_spot = (12.5 + ahead, left)
+    assert snapper.snap_foot(_snap_world(at_spot, (12.5, 0.0, 0.0))) == "right"
+    assert Strategy().snap_foot(_snap_world(at_spot, (12.5, 0.0, 0.0))) is None
+    # 8 cm to the side of the spot: between the feet's spots, no foot meets it
+    assert snapper.snap_foot(_snap_world((12.5 + ahead, 0.0), (12.5, 0.0, 0.0))) is None
+    # facing 30 deg to the left from 2.5 m: the line passes 1.4 m off the centre, wide
+    turned = (12.5, 0.0, 30.0)
+    c, s = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
+    ball = (12.5 + ahead * c - left * s, ahead * s + left * c)
+    assert snapper.snap_foot(_snap_world(ball, turned)) is None
+    # 6 m from goal: too far for the stand kick's 1.7-2.7 m
+    assert snapper.snap_foot(_snap_world((9.0 + ahead, left), (9.0, 0.0, 0.0))) is None
