@@ -151,6 +151,10 @@ class AttackConfig:
     snap_post_margin_m: float = 0.2
     snap_stop_s: float = 0.4
     snap_stand_s: float = 0.5
+    #: a stop that ended with the ball off the spot starts no new snap shot for this long (s):
+    #: otherwise the dribble nudges the ball back and the player stops again, creeping on
+    #: in stops while the keeper comes out (lead: 3 s of stops, attack.py --keeper --trace)
+    snap_retry_s: float = 3.0
 
 
 @dataclass(frozen=True)
@@ -355,6 +359,8 @@ class Strategy:
         self._snap_foot: str | None = None
         #: a snap shot stopping to kick: when (world time) the stop began
         self._snap_stop_since: float | None = None
+        #: no new snap shot before this world time (one was just given up)
+        self._snap_not_before = 0.0
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``), any beam and the claim
@@ -519,7 +525,8 @@ class Strategy:
             return
         attack = self.config.attack
         bx, by = world.ball.position
-        if "kick" in skills and self.snap_foot(world) is not None:
+        snap_allowed = "kick" in skills and (world.time or 0.0) >= self._snap_not_before
+        if snap_allowed and self.snap_foot(world) is not None:
             self._dribbling = self._shooting = False
             self._snap_stop_since = world.time or 0.0
             self._snap_stop(world, behavior)
@@ -604,6 +611,7 @@ class Strategy:
         self._snap_stop_since = None
         self._snap_foot = self.snap_foot(world)
         if self._snap_foot is None:
+            self._snap_not_before = (world.time or 0.0) + attack.snap_retry_s
             behavior.execute("pose", "stand")
         elif behavior.execute("kick", self._snap_foot, 1.0):
             self._snap_foot = None

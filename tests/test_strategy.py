@@ -392,6 +392,11 @@ def test_a_snap_shot_whose_ball_rolled_off_the_spot_while_stopping_is_given_up()
     assert behavior.calls[-1] == ("pose", "stand")
     snapper.decide(_snap_world((13.2, 0.0), pose, 11.1), behavior)
     assert behavior.calls[-1][0] in ("walk", "dribble")
+    # back at the spot within snap_retry_s: no new stop, it plays on
+    snapper.decide(_snap_world((12.5 + ahead, left), pose, 12.0), behavior)
+    assert behavior.calls[-1][0] in ("walk", "dribble")
+    snapper.decide(_snap_world((12.5 + ahead, left), pose, 14.5), behavior)
+    assert behavior.calls[-1] == ("walk_velocity", 0.0, 0.0, 0.0)
 
 
 def test_no_snap_shot_off_the_spot_facing_past_the_post_far_from_goal_or_by_default():
