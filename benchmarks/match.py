@@ -21,7 +21,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -62,6 +62,18 @@ def small_team(name: str, players: int, base: TeamConfig | None = None) -> TeamC
 
 
 @dataclass(frozen=True)
+class RecordedTeam(TeamConfig):
+    """A team that keeps the agents it makes, so a trace can say what each player does."""
+
+    made: list = field(default_factory=list, compare=False, repr=False)
+
+    def agents(self) -> list:
+        made = super().agents()
+        self.made.extend(made)
+        return made
+
+
+@dataclass(frozen=True)
 class MatchFigures:
     score_left: int
     score_right: int
@@ -85,8 +97,10 @@ def play(
 
     def count_falls(session) -> None:
         if trace_cycles and session.cycle % trace_cycles == 0:
+            if len(skills) < len(left.made) + len(right.made):
+                current_skills()
             x, y, _ = session.ball.position()
-            near = _players_near(session, (x, y), 1.5)
+            near = _players_near(session, (x, y), 1.5, skills)
             print(
                 f"#   t {session.referee.game_time:6.1f} ball {x:6.2f} {y:6.2f} "
                 f"{session.referee.play_mode} fallen {len(falls['fallen'])} near {' '.join(near)}",
@@ -100,8 +114,13 @@ def play(
                 falls["count"] += 1
             (falls["fallen"].add if fallen else falls["fallen"].discard)(agent_id)
 
-    left = small_team("NaoLeft", players, base)
-    right = small_team("NaoRight", players, base)
+    left = _recorded(small_team("NaoLeft", players, base))
+    right = _recorded(small_team("NaoRight", players, base))
+    skills = {}  # (team name, unum) -> the agent's behaviour, filled as the agents join
+
+    def current_skills() -> None:
+        for agent in left.made + right.made:
+            skills[(agent.config.team_name, agent.config.unum)] = agent.behavior
 
     def events(text: str) -> None:
         if trace_cycles:
@@ -137,16 +156,26 @@ def team_with_overrides(path: str | Path, overrides: list[str]) -> TeamConfig:
     return config_from_mapping(TeamConfig, data, source=f"{path} with {overrides}")
 
 
-def _players_near(session, point: tuple[float, float], radius: float) -> list[str]:
-    """``L7@0.42``: team initial (of NaoLeft/NaoRight), unum and distance of each robot
-    within ``radius`` of ``point``."""
+def _recorded(team: TeamConfig) -> RecordedTeam:
+    return RecordedTeam(team.name, team.robot_types, team.strategy)
+
+
+def _players_near(
+    session, point: tuple[float, float], radius: float, skills: dict | None = None
+) -> list[str]:
+    """``L7@0.42:dribble``: team initial (of NaoLeft/NaoRight), unum, distance and current
+    skill (when ``skills`` maps (team, unum) to the agent's behaviour) of each robot within
+    ``radius`` of ``point``."""
     near = []
     for slot in session.agents.values():
         if slot.robot is None:
             continue
         distance = math.dist(slot.robot.torso_position()[:2], point)
         if distance < radius:
-            near.append(f"{(slot.team_name or '???')[3:4]}{slot.unum}@{distance:.2f}")
+            behavior = (skills or {}).get((slot.team_name, slot.unum))
+            run = None if behavior is None else behavior.current
+            skill = "" if run is None else f":{run.name}"
+            near.append(f"{(slot.team_name or '???')[3:4]}{slot.unum}@{distance:.2f}{skill}")
     return near
 
 
