@@ -18,7 +18,9 @@ has not seen the ball for a few seconds turns on the spot until it sees it again
 The active player walks to a point behind the ball on the line to its aim in the opponent goal
 (the middle, or the side away from a goalkeeper it sees), going round the ball first when it
 stands in front of it, dribbles towards the aim once there and facing it, and shoots with
-``basic_kick`` when the ball is within kicking range of the goal (:class:`AttackConfig`). A
+``basic_kick`` when the ball is within kicking range of the goal (:class:`AttackConfig`);
+optionally (``snap_range_m``, off) it stops and kicks at once with the stand kick when near
+the goal the ball lies at a foot's kick spot with the robot facing into the goal mouth. A
 skill that is not registered is skipped (the player walks or stands instead), so the strategy
 runs with whatever skills exist.
 """
