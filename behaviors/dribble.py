@@ -147,6 +147,11 @@ class DribbleGait:
     #: a way longer than recover_face_distance is walked facing it (turning first), fully so
     #: beyond twice that: sidestepping half a metre takes seconds
     recover_face_distance: float = 0.3
+    #: a ball further than fetch_distance from the torso while the heading is off by more than
+    #: the placement dead band is fetched (:func:`recovery_velocity`, walking to the gait's
+    #: place behind it) rather than orbited: turning on the spot towards a new direction
+    #: leaves a ball that rolled 0.8 m ahead where it is, and it drifts out of the front
+    fetch_distance: float = math.inf
 
 
 @dataclass(frozen=True, slots=True)
@@ -207,7 +212,7 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     or the heading is wrong, plus a catch-up term (a share of the ball's forward error and,
     once it lies beyond ``ball_ahead``, of its own forward speed).
     """
-    if not ball_in_front(inputs, gait):  # beside or behind: walk round it first
+    if not ball_in_front(inputs, gait) or _fetch(inputs, gait):  # walk round it / to it first
         return recovery_velocity(inputs, gait)
     error = inputs.heading_error_deg
     turn_deg = _clip(gait.turn_gain * error, gait.max_turn_deg)
@@ -235,6 +240,13 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     vx = min(max(base + catch_up, gait.min_speed), gait.max_speed)
     calm = _calm_share(inputs.tilt_deg, gait)
     return vx * calm, vy * calm, turn_deg * calm
+
+
+def _fetch(inputs: DribbleInputs, gait: DribbleGait) -> bool:
+    """The ball lies far (beyond ``fetch_distance``) while the direction to dribble is well
+    off the heading (beyond the placement dead band): walk to it rather than orbit it."""
+    far = math.hypot(inputs.ball_x, inputs.ball_y) > gait.fetch_distance
+    return far and abs(inputs.heading_error_deg) > gait.placement_deadband_deg
 
 
 def _pursuit_deg(inputs: DribbleInputs, gait: DribbleGait) -> float:

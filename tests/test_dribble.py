@@ -97,6 +97,24 @@ def test_a_ball_far_behind_is_walked_to_facing_the_way():
     assert -30.0 < turn < 0.0
 
 
+def test_a_far_ball_is_fetched_when_the_direction_turns_sharply():
+    """The ball rolled 0.8 m ahead and the direction turns round: with fetch_distance set, the
+    robot walks to the ball's side (recovery law) instead of turning on the spot, where the
+    ball drifted out of the front and the two laws took turns (LFDL stalled for 12 s)."""
+    far = DribbleInputs(0.8, 0.0, 0.0, 0.0, 170.0)
+    fetching = replace(GAIT, fetch_distance=0.5)
+    assert dribble_velocity(far, fetching) == pytest.approx(recovery_velocity(far, fetching))
+    vx, _, _ = dribble_velocity(far, fetching)
+    assert vx > 0.5 * GAIT.recover_speed  # walks on towards it
+    orbiting = replace(GAIT, ahead_gain=0.0)  # LFDL's law: no catch-up, it turns on the spot
+    assert dribble_velocity(far, orbiting)[0] == pytest.approx(GAIT.min_speed)
+    # near, or with the heading about right, the dribble law as before
+    near = DribbleInputs(0.3, 0.0, 0.0, 0.0, 170.0)
+    assert dribble_velocity(near, fetching) == pytest.approx(dribble_velocity(near, GAIT))
+    ahead = DribbleInputs(0.8, 0.0, 0.0, 0.0, 10.0)
+    assert dribble_velocity(ahead, fetching) == pytest.approx(dribble_velocity(ahead, GAIT))
+
+
 def test_ball_in_front_window():
     assert ball_in_front(_inputs(GAIT.ball_ahead, GAIT.ball_side), GAIT)
     assert not ball_in_front(_inputs(GAIT.reach_min_ahead - 0.01), GAIT)
