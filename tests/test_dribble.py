@@ -473,3 +473,15 @@ def test_benchmark_settings_override_changes_only_the_named_keys(tmp_path):
     assert dribble_walk_parameters("lfdl", 0, path) == dribble_walk_parameters("lfdl", 0)
     with pytest.raises(ValueError, match="dotted"):
         with_settings(["no-equals-sign"], tmp_path)
+
+
+@pytest.mark.parametrize(("kind", "angle", "seed"), [("lfdl", 45.0, 1), ("dfdl", 90.0, 1)])
+def test_a_start_at_an_angle_turns_the_ball_round_without_falling(kind, angle, seed):
+    """The next issue's episodes dribble at a random direction from the robot's first heading.
+    These two starts fell before the fifth round (LFDL's 20 deg of pursuit swung it past the
+    ball coming out of the turn; DFDL asked for full speed forwards and sideways at once)."""
+    from benchmarks.dribble import run_dribble
+
+    run = run_dribble(kind, 0, distance=2.0, seed=seed, start_angle_deg=angle, max_seconds=12.0)
+    assert not run.fell  # before: LFDL fell after 3.1 s, DFDL after 5.6 s
+    assert run.reached  # the ball went 2 m along the new direction within 12 s
