@@ -4,6 +4,7 @@ changes WOULD buy (measured here, not adopted).
     .venv/bin/python benchmarks/physics.py                 # cycles_per_s[substeps=S,robots=N]
     .venv/bin/python benchmarks/physics.py --split         # Bullet's own timers, 22 robots
     .venv/bin/python benchmarks/physics.py --variants      # speed, stance, fidelity per variant
+    .venv/bin/python benchmarks/physics.py --variant floor_iters5 --speed-only   # Bullet's floor
     .venv/bin/python benchmarks/physics.py --variant iters15 --pytest tests/test_walk.py -q
     .venv/bin/python benchmarks/physics.py --variant strike --contact   # ball bounce and roll
     .venv/bin/python benchmarks/physics.py --variant strike --run benchmarks/kick.py --impact
@@ -292,6 +293,21 @@ def _strike(bounce: bool = True) -> Callable[[], contextlib.AbstractContextManag
     return apply
 
 
+def _together(
+    *variants: Callable[[], contextlib.AbstractContextManager],
+) -> Callable[[], contextlib.AbstractContextManager]:
+    """A variant made of several variants applied at once."""
+
+    @contextlib.contextmanager
+    def apply() -> Iterator[None]:
+        with contextlib.ExitStack() as stack:
+            for variant in variants:
+                stack.enter_context(variant())
+            yield
+
+    return apply
+
+
 VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "current": contextlib.nullcontext,
     "iters20": _constant(sim.physics, "SOLVER_ITERATIONS", 20),
@@ -300,6 +316,16 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "dantzig": _engine_parameter(constraintSolverType=pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG),
     "strike": _strike(bounce=True),
     "rigid": _strike(bounce=False),
+    # Floors of Bullet's cost, not candidates: one 0.02 s step per cycle and 10 or 5 solver
+    # iterations (robots sag and rock at these counts). What 22 robots cost here bounds any
+    # server built on PyBullet on this machine, whatever its Python does.
+    "floor_iters10": _together(
+        _constant(sim.session, "BASE_SUBSTEPS", 1), _constant(sim.physics, "SOLVER_ITERATIONS", 10)
+    ),
+    "floor_iters5": _together(
+        _constant(sim.session, "BASE_SUBSTEPS", 1), _constant(sim.physics, "SOLVER_ITERATIONS", 5)
+    ),
+    "residual": _engine_parameter(solverResidualThreshold=1e-3),
 }
 
 
