@@ -215,13 +215,15 @@ def search(
     seed: int,
     robot_type: int,
     minutes: float = math.inf,
+    starts: int = SEARCH_STARTS,
 ) -> dict[str, float]:
-    """(1 + lambda) evolution from :func:`start_parameters`; returns the best set found once
-    the generations are done or ``minutes`` have passed (checked after every candidate)."""
+    """(1 + lambda) evolution from :func:`start_parameters`, every candidate scored on the
+    first ``starts`` start states; returns the best set found once the generations are done or
+    ``minutes`` have passed (checked after every candidate)."""
     deadline = time.monotonic() + 60.0 * minutes
     rng = np.random.default_rng(seed)
     best = start_parameters()
-    best_score, results = evaluate(best, robot_type=robot_type)
+    best_score, results = evaluate(best, starts, robot_type)
     shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
     print(f"start: {best_score:.2f} ({shown})", flush=True)
     for generation in range(generations):
@@ -235,7 +237,7 @@ def search(
                     for n, v in best.items()
                 }
             )
-            score, results = evaluate(child, robot_type=robot_type)
+            score, results = evaluate(child, starts, robot_type)
             if score > best_score:
                 best, best_score, improved = child, score, True
                 shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
@@ -289,14 +291,20 @@ def main() -> None:
         "--scan", nargs="+", metavar="NAME=V1,V2", help="score single changes instead of searching"
     )
     parser.add_argument(
-        "--starts", type=int, default=SEARCH_STARTS, help="start states per score (scan), 1-6"
+        "--starts", type=int, default=SEARCH_STARTS, help="start states per score, 1-6"
     )
     args = parser.parse_args()
     if args.scan:
         scan(args.scan, args.starts, args.robot_type, start_parameters())
         return
     best = search(
-        args.generations, args.offspring, args.step, args.seed, args.robot_type, args.minutes
+        args.generations,
+        args.offspring,
+        args.step,
+        args.seed,
+        args.robot_type,
+        args.minutes,
+        args.starts,
     )
     print(yaml.safe_dump({"parameters": best}, sort_keys=False))
     print(yaml.safe_dump({KICK_LEFT: kick_entry(best)}, sort_keys=False, width=100))
