@@ -33,8 +33,16 @@ from behaviors.poses import PoseError, get_pose
 pytest.importorskip("pybullet")
 
 import benchmarks.kick as kick_benchmark
-from benchmarks.kick import BasicKickResult, measure_impact, run_basic_trial, run_trial
+from benchmarks.kick import (
+    BasicKickResult,
+    measure_impact,
+    run_basic_trial,
+    run_trial,
+    shuffle_in_place,
+    stand_up,
+)
 from learning.kick_search import motions_for, start_parameters
+from sim.session import Session, SessionConfig
 
 
 def test_packaged_kick_loads_and_ends_in_the_stand():
@@ -287,6 +295,22 @@ def test_basic_kick_figures_are_medians_over_the_kicks_and_counts_of_the_rest(mo
         "basic_kick_falls": 1.0,
         "basic_kick_misses": 1.0,
     }
+
+
+def test_a_shuffle_start_moves_the_standing_robot_by_the_asked_amount():
+    """Kick trials may start from the alignment shuffle's stance (as after an approach); the
+    start is only that if the shuffle really moved the robot and left it standing."""
+    session = Session(SessionConfig(seed=1, beam_noise=False))
+    try:
+        driver = stand_up(session, 0)
+        before = driver.robot.torso_position()
+        shuffle_in_place(driver, 0.03, -0.02)  # START faces +x: forward = +x, left = +y
+        after = driver.robot.torso_position()
+        assert driver.is_standing()
+        assert after[0] - before[0] == pytest.approx(0.03, abs=0.015)
+        assert after[1] - before[1] == pytest.approx(-0.02, abs=0.015)
+    finally:
+        session.close()
 
 
 def test_weak_kick_keeps_the_robot_up():
