@@ -62,7 +62,9 @@ BALANCE_DAMPING = 0.0
 #: over that edge, rolling the robot sideways. Moving the ankle against the pressure's offset
 #: keeps it inside the sole. Off: 2 made basic kicks far worse (``benchmarks/kick.py --strengths
 #: --basic-trials 20 --basic-distance 3 --cop-gain 2``: 18 falls of 20; ``--layout-seed 1``: 12),
-#: so the sign or the size of this term is still wrong. A skill's own ``cop_gain`` overrides it.
+#: and the other sign is no better (``--cop-gain -1``: 8 falls of 20 on both layout seeds, was
+#: 2 and 4), so this proportional term on the FRP point does not help either way (sixth round).
+#: A skill's own ``cop_gain`` overrides it.
 COP_GAIN = 0.0
 #: Below this normal force (N) the support foot's pressure point is not trusted (a foot in the
 #: air or barely touching reports a meaningless point).
