@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cache
 
@@ -240,6 +241,9 @@ class BasicKickSkill(Skill):
 
     def __init__(self, head_up_cycles: int = HEAD_UP_CYCLES) -> None:
         self.head_up_cycles = head_up_cycles
+        #: the kick motions to line up for (None: the packaged ones); benchmarks of candidate
+        #: kicks set their own, as on the ``kick`` skill, so both agree on where the ball goes
+        self.motions: Mapping[str, KickMotion] | None = None
         self.reset()
 
     def reset(self) -> None:
@@ -284,7 +288,7 @@ class BasicKickSkill(Skill):
             context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0)
             self._look_down(context)
             return False
-        motion = kick_motion(world.robot.robot_type)
+        motion = kick_motion(world.robot.robot_type, self.motions)
         if self.foot is None or (
             self.phase == "approach"
             and world.distance_to(world.ball.position) > CHOOSE_FOOT_DISTANCE_M

@@ -50,7 +50,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.basic_kick import SHUFFLE_SETTLE_CYCLES, FootShuffle
 from behaviors.joint_control import CYCLE_SECONDS
-from behaviors.kick import KickMotion, kick_motion
+from behaviors.kick import KickMotion, kick_motion, load_kicks
 from learning.local_agent import LocalAgent
 from sim.robot import SimRobot
 from sim.session import Session, SessionConfig
@@ -94,6 +94,9 @@ class SkillSettings:
     head_up_cycles: int | None = None
     #: ``kick``'s one-leg balance centre-of-pressure gain (see ``behaviors.kick.COP_GAIN``)
     cop_gain: float | None = None
+    #: kick motions for both ``kick`` and ``basic_kick`` (``--kicks FILE``: a candidate of
+    #: ``learning/kick_search.py --write``), so a candidate is checked after real approaches
+    motions: Mapping[str, KickMotion] | None = None
 
     def apply(self, driver: LocalAgent) -> None:
         if self.head_up_cycles is not None:
@@ -101,6 +104,9 @@ class SkillSettings:
             basic_kick.head_up_cycles = self.head_up_cycles  # type: ignore[attr-defined]
         if self.cop_gain is not None:
             driver.behavior.skill("kick").cop_gain = self.cop_gain  # type: ignore[attr-defined]
+        if self.motions is not None:
+            for name in ("kick", "basic_kick"):
+                driver.behavior.skill(name).motions = self.motions  # type: ignore[attr-defined]
 
 
 DEFAULT_SETTINGS = SkillSettings()
@@ -197,6 +203,7 @@ def run_trial(
         driver = stand_up(session, robot_type, settings)
         if shuffle_m is not None:
             shuffle_in_place(driver, *shuffle_m)
+        motions = settings.motions if motions is None else motions
         driver.behavior.skill("kick").motions = motions
         motion = kick_motion(robot_type, motions)
         robot = session.agents[driver.agent].robot
@@ -450,7 +457,7 @@ def run_basic_trial(
         while not finished and cycles < BASIC_KICK_TIMEOUT_CYCLES:
             before = session.ball.position()
             if placement is None and skill.phase == "kick" and skill.foot is not None:
-                motion = kick_motion(robot_type)
+                motion = kick_motion(robot_type, settings.motions)
                 placement = ball_placement_error(driver, skill.foot, motion)
             phase = skill.phase
             finished = driver.run("basic_kick", tx, ty, asked)
@@ -508,8 +515,17 @@ def main() -> None:
         type=float,
         help="the kick's one-leg balance COP_GAIN for this run (default: the skill's own)",
     )
+    parser.add_argument(
+        "--kicks",
+        type=Path,
+        help="kick file to use instead of behaviors/data/kicks.yaml (candidates)",
+    )
     args = parser.parse_args()
-    settings = SkillSettings(head_up_cycles=args.head_up_cycles, cop_gain=args.cop_gain)
+    settings = SkillSettings(
+        head_up_cycles=args.head_up_cycles,
+        cop_gain=args.cop_gain,
+        motions=None if args.kicks is None else load_kicks(args.kicks),
+    )
     if args.impact:
         impacts(args.seeds, args.robot_type, args.strengths or [1.0], settings)
         return

@@ -37,7 +37,7 @@ import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from behaviors.kick import KICK_LEFT, KickMotion, parse_kicks
+from behaviors.kick import KICK_LEFT, KickMotion, kick_motion, parse_kicks
 from benchmarks.kick import KickResult, run_trial
 from world.nao_model import robot_spec
 
@@ -203,13 +203,17 @@ def motions_for(p: Mapping[str, float]) -> dict[str, KickMotion]:
 
 
 def evaluate(
-    p: Mapping[str, float], starts: int = SEARCH_STARTS, robot_type: int = 0, shuffle: bool = False
+    p: Mapping[str, float],
+    starts: int = SEARCH_STARTS,
+    robot_type: int = 0,
+    shuffle: bool = False,
+    fall_penalty: float = FALL_PENALTY,
 ) -> tuple[float, list[KickResult]]:
     """Score of full-strength kicks, both feet, from the first ``starts`` of
     :data:`START_STATES`: the mean distance (a kick that misses counts 0) minus
-    :data:`FALL_PENALTY` per fall. The mean rather than the median, so that a kick that only
-    works from one start scores low. ``shuffle``: each start first plays the alignment
-    shuffle of :data:`SHUFFLES`."""
+    ``fall_penalty`` (:data:`FALL_PENALTY`) per fall. The mean rather than the median, so that
+    a kick that only works from one start scores low. ``shuffle``: each start first plays the
+    alignment shuffle of :data:`SHUFFLES`."""
     motions = motions_for(p)
     results = [
         run_trial(
@@ -227,7 +231,7 @@ def evaluate(
         for foot in ("left", "right")
     ]
     distances = [r.distance_m if r.time_to_contact_s is not None else 0.0 for r in results]
-    score = statistics.mean(distances) - FALL_PENALTY * sum(r.fell for r in results)
+    score = statistics.mean(distances) - fall_penalty * sum(r.fell for r in results)
     return score, results
 
 
@@ -240,14 +244,17 @@ def search(
     minutes: float = math.inf,
     starts: int = SEARCH_STARTS,
     shuffle: bool = False,
+    base: Mapping[str, float] | None = None,
+    fall_penalty: float = FALL_PENALTY,
 ) -> dict[str, float]:
-    """(1 + lambda) evolution from :func:`start_parameters`, every candidate scored on the
-    first ``starts`` start states; returns the best set found once the generations are done or
-    ``minutes`` have passed (checked after every candidate)."""
+    """(1 + lambda) evolution from ``base`` (default :func:`start_parameters`), every
+    candidate scored on the first ``starts`` start states with ``fall_penalty`` per fall;
+    returns the best set found once the generations are done or ``minutes`` have passed
+    (checked after every candidate)."""
     deadline = time.monotonic() + 60.0 * minutes
     rng = np.random.default_rng(seed)
-    best = start_parameters()
-    best_score, results = evaluate(best, starts, robot_type, shuffle)
+    best = clip(start_parameters() if base is None else base)
+    best_score, results = evaluate(best, starts, robot_type, shuffle, fall_penalty)
     shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
     print(f"start: {best_score:.2f} ({shown})", flush=True)
     for generation in range(generations):
@@ -261,7 +268,7 @@ def search(
                     for n, v in best.items()
                 }
             )
-            score, results = evaluate(child, starts, robot_type, shuffle)
+            score, results = evaluate(child, starts, robot_type, shuffle, fall_penalty)
             if score > best_score:
                 best, best_score, improved = child, score, True
                 shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
@@ -278,29 +285,51 @@ def scan(
     robot_type: int,
     base: Mapping[str, float],
     shuffle: bool = False,
+    fall_penalty: float = FALL_PENALTY,
 ) -> None:
     """Coordinate scan: score ``base`` with each ``name=value[,value...]`` change applied on
     its own (``a=1+b=2`` changes two at once) and print one ``scan[...]: score`` line each.
     Why besides the evolution: the score is noisy (the kick is sensitive to its start), and a
     (1 + lambda) search keeps a lucky candidate; a scan shows a lever's trend."""
-    score, results = evaluate(base, starts, robot_type, shuffle)
+    score, results = evaluate(base, starts, robot_type, shuffle, fall_penalty)
     _report("scan[base]", score, results)
     for change in changes:
         for values in _expand(change):
             params = clip({**base, **values})
             label = ",".join(f"{n}={v:g}" for n, v in values.items())
-            score, results = evaluate(params, starts, robot_type, shuffle)
+            score, results = evaluate(params, starts, robot_type, shuffle, fall_penalty)
             _report(f"scan[{label}]", score, results)
 
 
 def _expand(change: str) -> list[dict[str, float]]:
     """``"a=1,2"`` -> [{a: 1}, {a: 2}]; ``"a=1+b=2"`` -> [{a: 1, b: 2}]."""
     if "+" in change:
-        return [{n: float(v) for n, v in (part.split("=") for part in change.split("+"))}]
+        return [_changes(change)]
     name, values = change.split("=")
     if name not in PARAMETERS:
         raise SystemExit(f"unknown parameter {name!r}; known: {', '.join(PARAMETERS)}")
     return [{name: float(v)} for v in values.split(",")]
+
+
+def _changes(text: str) -> dict[str, float]:
+    """``"a=1+b=2"`` -> {a: 1, b: 2}, or a JSON object as the search prints its best
+    (``{"a": 1, ...}``); names checked against :data:`PARAMETERS`."""
+    if text.lstrip().startswith("{"):
+        values = {n: float(v) for n, v in json.loads(text).items()}
+    else:
+        values = {n: float(v) for n, v in (part.split("=") for part in text.split("+"))}
+    unknown = sorted(set(values) - set(PARAMETERS))
+    if unknown:
+        raise SystemExit(f"unknown parameters {unknown}; known: {', '.join(PARAMETERS)}")
+    return values
+
+
+def write_candidate(p: Mapping[str, float], path: Path) -> None:
+    """Write ``p`` as a kick file for ``benchmarks/kick.py --kicks``: its entry with the
+    packaged kick's distance table, so ``basic_kick`` picks the same strengths (full strength
+    at 3 m) and only the motion differs."""
+    entry = {**kick_entry(p), "distances": [list(pair) for pair in kick_motion(0).distances]}
+    path.write_text(yaml.safe_dump({KICK_LEFT: entry}, sort_keys=False, width=100))
 
 
 def _report(label: str, score: float, results: list[KickResult]) -> None:
@@ -328,9 +357,30 @@ def main() -> None:
         action="store_true",
         help="start every kick after basic_kick's alignment shuffle (as after an approach)",
     )
+    parser.add_argument(
+        "--base",
+        metavar="A=1+B=2",
+        help="start (search) or scan from the packaged kick with these changes",
+    )
+    parser.add_argument(
+        "--fall-penalty",
+        type=float,
+        default=FALL_PENALTY,
+        help="score lost per fall (m of mean distance)",
+    )
+    parser.add_argument(
+        "--write",
+        type=Path,
+        metavar="FILE",
+        help="write --base as a kick file (for benchmarks/kick.py --kicks) and stop",
+    )
     args = parser.parse_args()
+    base = {**start_parameters(), **(_changes(args.base) if args.base else {})}
+    if args.write:
+        write_candidate(clip(base), args.write)
+        return
     if args.scan:
-        scan(args.scan, args.starts, args.robot_type, start_parameters(), args.shuffle)
+        scan(args.scan, args.starts, args.robot_type, base, args.shuffle, args.fall_penalty)
         return
     best = search(
         args.generations,
@@ -341,6 +391,8 @@ def main() -> None:
         args.minutes,
         args.starts,
         args.shuffle,
+        base,
+        args.fall_penalty,
     )
     print(yaml.safe_dump({"parameters": best}, sort_keys=False))
     print(yaml.safe_dump({KICK_LEFT: kick_entry(best)}, sort_keys=False, width=100))

@@ -33,6 +33,7 @@ from behaviors.poses import PoseError, get_pose
 pytest.importorskip("pybullet")
 
 import benchmarks.kick as kick_benchmark
+from behaviors.kick import load_kicks
 from benchmarks.kick import (
     BasicKickResult,
     measure_impact,
@@ -41,7 +42,7 @@ from benchmarks.kick import (
     shuffle_in_place,
     stand_up,
 )
-from learning.kick_search import motions_for, start_parameters
+from learning.kick_search import motions_for, start_parameters, write_candidate
 from sim.session import Session, SessionConfig
 
 
@@ -263,6 +264,17 @@ def test_the_kick_search_starts_from_the_packaged_kick():
             assert mine.hold == theirs.hold
             for joint, angle in theirs.joints.items():
                 assert mine.joints[joint] == pytest.approx(angle, abs=0.05)
+
+
+def test_a_written_candidate_loads_with_the_packaged_calibration(tmp_path):
+    """``kick_search --write`` files feed ``benchmarks/kick.py --kicks``: they must load and
+    carry the packaged distance table, so ``basic_kick`` asks the same strengths of them."""
+    path = tmp_path / "candidate.yaml"
+    write_candidate({**start_parameters(), "ball_gap_m": 0.012}, path)
+    candidate, packaged = load_kicks(path)[KICK_LEFT], kick_motion(0)
+    assert candidate.ball_gap_m == pytest.approx(0.012)
+    assert candidate.distances == packaged.distances
+    assert candidate.swing_duration(1.0) == pytest.approx(packaged.swing_duration(1.0))
 
 
 def test_impact_measurement_sees_the_foot_push_the_ball_faster_than_it_moved_before():
