@@ -26,14 +26,21 @@ from behaviors.basic_kick import (
     shuffle_stages,
 )
 from behaviors.joint_control import JointCommands
-from behaviors.kick import KICK_LEFT, KickMotion, KickSkill, default_kicks, kick_motion, parse_kicks
+from behaviors.kick import (
+    KICK_LEFT,
+    KickMotion,
+    KickSkill,
+    default_kicks,
+    kick_motion,
+    load_kicks,
+    parse_kicks,
+)
 from behaviors.mirror import MIRROR_TABLE
 from behaviors.poses import PoseError, get_pose
 
 pytest.importorskip("pybullet")
 
 import benchmarks.kick as kick_benchmark
-from behaviors.kick import load_kicks
 from benchmarks.kick import (
     BasicKickResult,
     measure_impact,
