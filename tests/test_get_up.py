@@ -333,12 +333,13 @@ def test_the_side_roll_turns_the_body_within_a_second(robot_type, direction, see
     assert side in ("back", "front") and second_attempt_s < 1.2, started
 
 
-def test_type4_rise_balance_keeps_a_tipping_robot_up(monkeypatch):
-    """Benchmark fall type 4 seed 4016 (ends on the back): with the hip correction the robot
-    stands within 4 s; without it the rise from the squat tips backwards and lies again."""
+def test_type4_back_get_up_keeps_a_once_tipping_robot_up(monkeypatch):
+    """Benchmark fall type 4 seed 4016 (ends on the back): before the fold with less foot pitch
+    (lj5 15.4) the rise from the squat tipped backwards unless the hip correction caught it;
+    now the robot stands within 4 s with the correction and without it."""
     assert run_trial(4, "front", 4016).succeeded
     monkeypatch.setattr(get_up_module, "RISE_BALANCE", {})
-    assert not run_trial(4, "front", 4016).succeeded
+    assert run_trial(4, "front", 4016).succeeded
 
 
 def test_front_get_up_of_types_1_to_4_keeps_the_arms_down(monkeypatch):
