@@ -533,14 +533,13 @@ class Strategy:
             self._snap_stop_since = world.time or 0.0
             self._snap_stop(world, behavior)
             return
+        if self._shooting:
+            self._end_overdue_shot(world, (bx, by))
         goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
         to_goal = math.atan2(goal_y - by, goal_x - bx)
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
         can_dribble = "dribble" in skills
         in_range = to_goal_m < attack.kick_range_m and to_goal_m >= attack.dribble_in_m
-        if self._shooting and self._shot_overdue(world, (bx, by)):
-            goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
-            to_goal = math.atan2(goal_y - by, goal_x - bx)
         if "basic_kick" in skills and (in_range or not can_dribble or self._shooting):
             self._dribbling = False
             finished = behavior.execute("basic_kick", goal_x, goal_y, "long")
@@ -623,12 +622,7 @@ class Strategy:
         its torso, by its own estimates. Counted every cycle, whatever the player does: the
         referee counts a robot getting up on the ball too (a dribbler that fell over the ball
         lay on it for 4 s, stood up over it and was called 2 s later)."""
-        ball, pose = world.ball.position, world.pose
-        holding = (
-            ball is not None
-            and pose is not None
-            and math.dist((pose.x, pose.y), ball) < self.config.attack.hold_guard_m
-        )
+        holding = _ball_within(world, self.config.attack.hold_guard_m)
         return self._hold.update(world.time or 0.0, holding)
 
     def _backing_off(self, world, held_s: float) -> bool:
@@ -693,16 +687,15 @@ class Strategy:
         heading += side * math.radians(attack.escape_deg)
         return (ball[0] + 5.0 * math.cos(heading), ball[1] + 5.0 * math.sin(heading))
 
-    def _shot_overdue(self, world, ball: tuple[float, float]) -> bool:
+    def _end_overdue_shot(self, world, ball: tuple[float, float]) -> None:
         """End a stall shot running longer than :attr:`AttackConfig.shot_max_s` and start an
-        escape instead; True if it did."""
+        escape instead (which :meth:`_escape_aim` then steers)."""
         attack = self.config.attack
         now = world.time or 0.0
         if attack.shot_max_s <= 0.0 or now - self._shot_since < attack.shot_max_s:
-            return False
+            return
         self._shooting = False
         self._escape = (now + attack.escape_s, self._escape_side(world, ball))
-        return True
 
     def _escape_side(self, world, ball: tuple[float, float]) -> float:
         """+1 (to the left, team frame y up) or -1: away from the opponents near the ball,
@@ -738,23 +731,24 @@ class Strategy:
         if "walk" not in behavior.skill_names:
             behavior.execute("pose", "stand")
             return
-        x, y = self.support_point(world.ball.position)
-        step = HOLD_HEADING_STEP_DEG
-        heading = _heading_to((x, y), world.ball.position)
-        behavior.execute("walk", x, y, step * round(heading / step))
+        _walk_facing_ball(world, behavior, self.support_point(world.ball.position))
 
     def _hold_position(self, world, behavior) -> None:
         """Walk to the formation place and face the ball there (to keep seeing it)."""
         if "walk" not in behavior.skill_names:
             behavior.execute("pose", "stand")
             return
-        x, y = self.home(world.unum)
-        ball = world.ball.position
-        heading = 0.0 if ball is None else _heading_to((x, y), ball)
-        # in steps of HOLD_HEADING_STEP_DEG: a heading that followed every move of the ball
-        # would keep the walk turning on the spot
-        step = HOLD_HEADING_STEP_DEG
-        behavior.execute("walk", x, y, step * round(heading / step))
+        _walk_facing_ball(world, behavior, self.home(world.unum))
+
+
+def _walk_facing_ball(world, behavior, place: tuple[float, float]) -> None:
+    """Walk to ``place`` and face the ball there (heading 0 while the ball is unknown), in
+    steps of :data:`HOLD_HEADING_STEP_DEG`: a heading that followed every move of the ball
+    would keep the walk turning on the spot."""
+    ball = world.ball.position
+    heading = 0.0 if ball is None else _heading_to(place, ball)
+    step = HOLD_HEADING_STEP_DEG
+    behavior.execute("walk", place[0], place[1], step * round(heading / step))
 
 
 def _last_seen_at_feet(world) -> bool:

@@ -97,8 +97,10 @@ def play(
 
     def count_falls(session) -> None:
         if trace_cycles and session.cycle % trace_cycles == 0:
-            if len(skills) < len(left.made) + len(right.made):
-                current_skills()
+            skills = {
+                (agent.config.team_name, agent.config.unum): agent.behavior
+                for agent in left.made + right.made
+            }
             x, y, _ = session.ball.position()
             near = _players_near(session, (x, y), 1.5, skills)
             print(
@@ -116,11 +118,6 @@ def play(
 
     left = _recorded(small_team("NaoLeft", players, base))
     right = _recorded(small_team("NaoRight", players, base))
-    skills = {}  # (team name, unum) -> the agent's behaviour, filled as the agents join
-
-    def current_skills() -> None:
-        for agent in left.made + right.made:
-            skills[(agent.config.team_name, agent.config.unum)] = agent.behavior
 
     def events(text: str) -> None:
         if trace_cycles:

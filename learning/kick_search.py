@@ -255,8 +255,7 @@ def search(
     rng = np.random.default_rng(seed)
     best = clip(start_parameters() if base is None else base)
     best_score, results = evaluate(best, starts, robot_type, shuffle, fall_penalty)
-    shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
-    print(f"start: {best_score:.2f} ({shown})", flush=True)
+    print(f"start: {best_score:.2f} ({_shown(results)})", flush=True)
     for generation in range(generations):
         improved = False
         for _ in range(offspring):
@@ -271,8 +270,7 @@ def search(
             score, results = evaluate(child, starts, robot_type, shuffle, fall_penalty)
             if score > best_score:
                 best, best_score, improved = child, score, True
-                shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
-                print(f"gen {generation}: {best_score:.2f} ({shown})", flush=True)
+                print(f"gen {generation}: {best_score:.2f} ({_shown(results)})", flush=True)
                 print(f"  parameters: {json.dumps(best)}", flush=True)
         if not improved:
             step /= 2
@@ -332,10 +330,14 @@ def write_candidate(p: Mapping[str, float], path: Path) -> None:
     path.write_text(yaml.safe_dump({KICK_LEFT: entry}, sort_keys=False, width=100))
 
 
+def _shown(results: list[KickResult]) -> str:
+    """Each kick's distance, ``F`` after a fall: ``2.41, 3.10F, ...``."""
+    return ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
+
+
 def _report(label: str, score: float, results: list[KickResult]) -> None:
-    shown = ", ".join(f"{r.distance_m:.2f}{'F' if r.fell else ''}" for r in results)
     falls = sum(r.fell for r in results)
-    print(f"{label}: {score:.2f} (falls {falls} of {len(results)}: {shown})", flush=True)
+    print(f"{label}: {score:.2f} (falls {falls} of {len(results)}: {_shown(results)})", flush=True)
 
 
 def main() -> None:
