@@ -9,6 +9,8 @@ changes WOULD buy (measured here, not adopted).
     .venv/bin/python benchmarks/physics.py --variant strike --contact   # ball bounce and roll
     .venv/bin/python benchmarks/physics.py --variant strike --run benchmarks/kick.py --impact
     .venv/bin/python benchmarks/physics.py --variant strike --kick-gaps 0.024 0.06 0.1
+    .venv/bin/python benchmarks/physics.py --variant strike_noself --run benchmarks/kick.py \
+        --seeds 6 --strengths 0 1 --basic-trials 0
 
 ``cycles_per_s``: each cycle does what the server does per robot: new joint speeds, one world
 step, sensor update, joint angles, gyro, accelerometer and foot pressure.
@@ -27,8 +29,11 @@ parameter on every new world, so the committed physics stays as it is.
 ``strike`` (and ``rigid``, the same without the bounce) moves the soft-contact parameters from
 the robot links to the ground (see :func:`_strike`): robot-ground contacts stay as tuned, the
 foot-ball and robot-robot contacts become rigid, and the foot-ball contact bounces at 0.8 as on
-the real server. ``--contact`` prints the ball's own figures under a variant (bounce on the
-ground, roll distances); ``--run SCRIPT ARGS`` runs any benchmark script inside the variant.
+the real server (``sim.contact_models``, ``contact: strike`` in ``config/server.yaml``).
+``noself`` and ``strike_noself`` add the real server's rule that no two parts of one robot
+touch (``self_collision: false``). ``--contact`` prints the ball's own figures under a variant
+(bounce on the ground, roll distances); ``--run SCRIPT ARGS`` runs any benchmark script inside
+the variant.
 """
 
 from __future__ import annotations
@@ -55,7 +60,8 @@ import sim.field
 import sim.physics
 import sim.robot
 import sim.session
-from sim.field import Ball, GroundPhysics, build_field
+from sim.contact_models import ContactPhysics, soft_contact, strike_contact
+from sim.field import Ball, build_field
 from sim.physics import CYCLE_SECONDS, PhysicsWorld
 from sim.robot import SimRobot
 from world.field_geometry import BALL_RADIUS
@@ -231,66 +237,56 @@ def _constant(
     return apply
 
 
-#: Restitution of robot links in ``strike``. Bullet multiplies the two bodies' restitutions,
-#: so with robot r, ball 0.8 / r and ground r, foot-ball and ball-ground are 0.8 while
-#: robot-robot and robot-ground are r^2 (0.01: no bounce; Bullet does not clamp one body's
-#: value above 1, only products matter).
-STRIKE_ROBOT_RESTITUTION = 0.1
-#: The real server's minimum bounce velocity (ball contact, nao-model-facts.md); Bullet's own
-#: threshold (restitutionVelocityThreshold) is 0.2 m/s and applies to every contact.
-STRIKE_MIN_BOUNCE_SPEED = 0.8
-
-
-def _strike(bounce: bool = True) -> Callable[[], contextlib.AbstractContextManager]:
-    """The softness of the ground contact moved from the robots onto the ground.
-
-    Bullet makes a contact soft when EITHER body has soft-contact parameters (stiffness in
-    series, damping summed), so the robots' 1000 N/m, 80 N s/m made the foot-ball contact a
-    heavily over-damped spring on a 26 g ball: the foot pushes the ball instead of striking it.
-    Robots without soft parameters on a ground with them keep the very same robot-ground
-    contact (1000 N/m in series with a rigid body's 1e30, 80 + 0.1 N s/m) while foot-ball and
-    robot-robot become rigid. With ``bounce`` the restitutions are chosen so that the foot-ball
-    contact bounces at 0.8 like the real server's (ball bounce 0.8, robot bounce off, ODE takes
-    the one that is set), ball-ground and ball-post stay 0.8, and robot-robot/robot-ground are
-    0.01; without, the robot links keep restitution 0 (foot-ball 0).
-
-    Measured (not adopted): the fidelity figures and ball rolls are unchanged, a driven foot box
-    gives the ball 1.8x its speed instead of 1.0x, but the stand kick gains little (the foot
-    meets the ball at 1.3-1.9 m/s, early in its swing) and falls far more often (14 of 24
-    stand kicks against 2), because a robot's own links now touch each other rigidly: with
-    self-collision switched off both physics fall alike. The dropped ball's rebound falls from
-    0.53 to 0.35 of its height (the ground's softness now acts on the ball too).
-    """
+def _contact(
+    make: Callable[[ContactPhysics], ContactPhysics],
+) -> Callable[[], contextlib.AbstractContextManager]:
+    """A variant whose contacts are ``make(today's contacts)`` (``sim.contact_models``), set as
+    the module defaults that every world, robot, field and ball built inside it reads."""
 
     @contextlib.contextmanager
     def apply() -> Iterator[None]:
-        robot_r = STRIKE_ROBOT_RESTITUTION if bounce else 0.0
-        ball = sim.field.DEFAULT_BALL
-        ball_r = ball.restitution / STRIKE_ROBOT_RESTITUTION if bounce else ball.restitution
-        ground_r = ball.restitution / ball_r
-        robot = sim.robot.DEFAULT_PHYSICS
-        ground = GroundPhysics(
-            restitution=ground_r,
-            contact_stiffness=robot.contact_stiffness,
-            contact_damping=robot.contact_damping,
-        )
-        patches = (
-            _constant(
-                sim.robot,
-                "DEFAULT_PHYSICS",
-                dataclasses.replace(robot, soft_contacts=False, restitution=robot_r),
-            ),
-            _constant(sim.field, "DEFAULT_GROUND", ground),
-            _constant(sim.field, "DEFAULT_BALL", dataclasses.replace(ball, restitution=ball_r)),
-            _constant(sim.field, "POST_RESTITUTION", sim.field.POST_RESTITUTION * ground_r),
-            _engine_parameter(restitutionVelocityThreshold=STRIKE_MIN_BOUNCE_SPEED),
-        )
+        physics = make(soft_contact())
+        patches = [
+            _constant(sim.robot, "DEFAULT_PHYSICS", physics.robot),
+            _constant(sim.field, "DEFAULT_GROUND", physics.ground),
+            _constant(sim.field, "DEFAULT_BALL", physics.ball),
+            _constant(sim.field, "POST_RESTITUTION", physics.post_restitution),
+        ]
+        if physics.min_bounce_speed is not None:
+            patches.append(_engine_parameter(restitutionVelocityThreshold=physics.min_bounce_speed))
         with contextlib.ExitStack() as stack:
             for patch in patches:
                 stack.enter_context(patch())
             yield
 
     return apply
+
+
+def _without_self_collision(physics: ContactPhysics) -> ContactPhysics:
+    """No contacts between a robot's own parts, as on the real server."""
+    return dataclasses.replace(
+        physics, robot=dataclasses.replace(physics.robot, self_collision=False)
+    )
+
+
+def _strike(bounce: bool = True) -> Callable[[], contextlib.AbstractContextManager]:
+    """The softness of the ground contact moved from the robots onto the ground
+    (``sim.contact_models.strike_contact``; ``contact: strike`` in ``config/server.yaml``).
+
+    Bullet makes a contact soft when EITHER body has soft-contact parameters (stiffness in
+    series, damping summed), so the robots' 1000 N/m, 80 N s/m made the foot-ball contact a
+    heavily over-damped spring on a 26 g ball: the foot pushes the ball instead of striking it.
+    Robots without soft parameters on a ground with them keep the very same robot-ground
+    contact while foot-ball and robot-robot become rigid. With ``bounce`` the foot-ball contact
+    bounces at 0.8 like the real server's; without, the robot links keep restitution 0.
+
+    Measured in session 4 (not adopted): the fidelity figures and ball rolls are unchanged, a
+    driven foot box gives the ball 1.8x its speed instead of 1.0x, but the stand kick fell far
+    more often (14 of 24 stand kicks against 2), because a robot's own links then touch each
+    other rigidly. ``strike_noself`` adds the real server's rule that a robot's parts never
+    touch each other (``self_collision: false``).
+    """
+    return _contact(lambda physics: strike_contact(physics, bounce))
 
 
 def _together(
@@ -316,6 +312,9 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "dantzig": _engine_parameter(constraintSolverType=pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG),
     "strike": _strike(bounce=True),
     "rigid": _strike(bounce=False),
+    # the real server's rule: no contacts between a robot's own parts (disableInnerCollision)
+    "noself": _contact(_without_self_collision),
+    "strike_noself": _contact(lambda p: _without_self_collision(strike_contact(p))),
     # Floors of Bullet's cost, not candidates: one 0.02 s step per cycle and 10 or 5 solver
     # iterations (robots sag and rock at these counts). What 22 robots cost here bounds any
     # server built on PyBullet on this machine, whatever its Python does.

@@ -251,12 +251,12 @@ def _static_body(
     return body
 
 
-def _build_goal(world: PhysicsWorld, side: str) -> Goal:
+def _build_goal(world: PhysicsWorld, side: str, post_restitution: float) -> Goal:
     """Posts and crossbar at the goal line, then side, back and top nets closing the box."""
     sign = -1.0 if side == "left" else 1.0
     half_width = GOAL_WIDTH / 2
     r = GOAL_POST_RADIUS
-    post = {"restitution": POST_RESTITUTION, "lateralFriction": NET_FRICTION}
+    post = {"restitution": post_restitution, "lateralFriction": NET_FRICTION}
     net = {"restitution": NET_RESTITUTION, "lateralFriction": NET_FRICTION}
     line_x = sign * (HALF_LENGTH + r)  # post axis: its front touches the goal line
     posts = tuple(
@@ -299,15 +299,21 @@ def _build_goal(world: PhysicsWorld, side: str) -> Goal:
     )
 
 
-def build_field(world: PhysicsWorld, ground: GroundPhysics | None = None) -> Field:
+def build_field(
+    world: PhysicsWorld,
+    ground: GroundPhysics | None = None,
+    post_restitution: float | None = None,
+) -> Field:
     """Add the ground plane (z = 0), both goals and the border walls to ``world``;
-    ``ground`` defaults to :data:`DEFAULT_GROUND`."""
+    ``ground`` defaults to :data:`DEFAULT_GROUND`, ``post_restitution`` (posts and crossbar)
+    to :data:`POST_RESTITUTION`."""
     ground_physics = ground if ground is not None else DEFAULT_GROUND
+    post = POST_RESTITUTION if post_restitution is None else post_restitution
     plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=world.client)
     ground_id = _static_body(
         world, plane, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0), ground_physics.dynamics()
     )
-    goals = (_build_goal(world, "left"), _build_goal(world, "right"))
+    goals = (_build_goal(world, "left", post), _build_goal(world, "right", post))
     walls = tuple(
         _static_box(world, centre, extents, restitution=NET_RESTITUTION)
         for centre, extents in WALL_BOXES
@@ -486,6 +492,7 @@ def foot_strike_speed(
     phase: float = 0.0,
     ball_physics: BallPhysics | None = None,
     foot_dynamics: Mapping[str, float] | None = None,
+    min_bounce_speed: float | None = None,
 ) -> float:
     """Launch speed (m/s, :meth:`Ball.launch_speed`) a foot moving at ``speed`` gives a
     resting ball.
@@ -500,9 +507,10 @@ def foot_strike_speed(
     ``phase`` (0..1) shifts the start back by that fraction of one step's travel: whether a
     step lands on the ball depends on it, so a safety check must try several phases.
     ``foot_dynamics`` are ``changeDynamics`` settings of the foot link (default: the robot's foot
-    friction, :data:`PROBE_FOOT_DYNAMICS`).
+    friction, :data:`PROBE_FOOT_DYNAMICS`); ``min_bounce_speed`` the world's
+    (:class:`~sim.physics.PhysicsWorld`).
     """
-    world = PhysicsWorld(substeps=substeps)
+    world = PhysicsWorld(substeps=substeps, min_bounce_speed=min_bounce_speed)
     try:
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=world.client)
         _static_body(world, plane, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0), {})

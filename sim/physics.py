@@ -87,7 +87,10 @@ class WorldSnapshot:
 class PhysicsWorld:
     """A PyBullet client stepped in server cycles of 0.02 s, each split into ``substeps``."""
 
-    def __init__(self, substeps: int = 4) -> None:
+    def __init__(self, substeps: int = 4, min_bounce_speed: float | None = None) -> None:
+        """``min_bounce_speed`` (m/s): contacts closing slower than this do not bounce (Bullet's
+        ``restitutionVelocityThreshold``, 0.2 m/s when None); the real server's ball contact
+        bounces from 0.8 m/s (``sim.contact_models``)."""
         if substeps < 1:
             raise ValueError(f"substeps must be >= 1, got {substeps}")
         self.substeps = substeps
@@ -103,6 +106,10 @@ class PhysicsWorld:
             warmStartingFactor=0.0,
             physicsClientId=self.client,
         )
+        if min_bounce_speed is not None:
+            pybullet.setPhysicsEngineParameter(
+                restitutionVelocityThreshold=min_bounce_speed, physicsClientId=self.client
+            )
 
     def step_cycle(self, substeps: int | None = None) -> None:
         """Advance the world by one server cycle (0.02 s), letting every registered holder

@@ -15,11 +15,16 @@ changed. Limits are Bullet joint-limit constraints whose force is capped
 (:attr:`RobotPhysics.joint_limit_force`), which makes them give a few degrees under a motor
 pushing at full speed, like the real server's soft ODE stops.
 
-Collisions follow SimSpark: collider bodies collide with each other (and everything else);
-bodies without a collider have no shape. Pairs joined by a joint do not collide. Because the
-mass-only joint spheres sit between colliders, "joined" means the nearest collider ancestor
-(thigh-torso through hip1/hip2, foot-shank through the ankle); these pairs already overlap or
-touch in the zero pose, where real contacts would make the robot fight itself.
+Collisions: collider bodies collide with everything else; bodies without a collider have no
+shape. By default a robot's colliders also collide with each other, except pairs joined by a
+joint: because the mass-only joint spheres sit between colliders, "joined" means the nearest
+collider ancestor (thigh-torso through hip1/hip2, foot-shank through the ankle); these pairs
+already overlap or touch in the zero pose, where real contacts would make the robot fight
+itself. The real server has no such contacts at all: ``nao_hetero.rsg`` puts every NAO in its
+own ``Space`` with ``(disableInnerCollision true)``, and SimSpark's ``Space::Collide`` skips
+such a space, so two parts of one robot never touch (other robots, the ball and the field
+still do). :attr:`RobotPhysics.self_collision` False does the same here (opt-in:
+``self_collision`` in ``config/server.yaml``).
 """
 
 from __future__ import annotations
@@ -63,6 +68,9 @@ class RobotPhysics:
     is for a world whose ground carries the softness instead (``sim.field.GroundPhysics``),
     which leaves robot-ground contacts as they are and makes the others rigid. Opt-in only
     (``benchmarks/physics.py --variant strike``).
+
+    ``self_collision`` False lets no two parts of one robot touch, as on the real server (see
+    the module docstring); True keeps today's contacts between non-neighbouring parts.
     """
 
     contact_stiffness: float = 1000.0
@@ -76,6 +84,19 @@ class RobotPhysics:
     linear_drag: float = BODY_DRAG
     angular_drag: float = BODY_DRAG
     soft_contacts: bool = True
+    self_collision: bool = True
+
+    def collider_dynamics(self) -> dict[str, float]:
+        """``changeDynamics`` settings of every collider link: friction, bounce and, with
+        ``soft_contacts``, the ground contact's spring (probes that stand in for a foot use
+        them too, so they touch the ball as a robot's foot does)."""
+        params = {"lateralFriction": self.lateral_friction, "restitution": self.restitution}
+        if self.soft_contacts:
+            params |= {
+                "contactStiffness": self.contact_stiffness,
+                "contactDamping": self.contact_damping,
+            }
+        return params
 
 
 #: The physics of every robot built without an explicit ``physics`` (read when it is built).
@@ -300,11 +321,11 @@ class SimRobot:
         self.robot_type = robot_type
         self.physics = physics if physics is not None else DEFAULT_PHYSICS
         self._client = world.client
-        flags = (
-            pybullet.URDF_USE_INERTIA_FROM_FILE
-            | pybullet.URDF_USE_SELF_COLLISION
-            | pybullet.URDF_USE_SELF_COLLISION_EXCLUDE_PARENT
-        )
+        flags = pybullet.URDF_USE_INERTIA_FROM_FILE
+        if self.physics.self_collision:
+            flags |= (
+                pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_EXCLUDE_PARENT
+            )
         self.body_id: int = pybullet.loadURDF(
             str(urdf_path(self.spec)), position, flags=flags, physicsClientId=self._client
         )
@@ -364,15 +385,8 @@ class SimRobot:
         for body in self.spec.bodies:
             link = self._link_of[body.name]
             kwargs = {"jointLimitForce": p.joint_limit_force} if link >= 0 else {}
-            if body.collider and p.soft_contacts:
-                kwargs |= {
-                    "contactStiffness": p.contact_stiffness,
-                    "contactDamping": p.contact_damping,
-                    "lateralFriction": p.lateral_friction,
-                    "restitution": p.restitution,
-                }
-            elif body.collider:
-                kwargs |= {"lateralFriction": p.lateral_friction, "restitution": p.restitution}
+            if body.collider:
+                kwargs |= p.collider_dynamics()
             if kwargs:
                 pybullet.changeDynamics(bid, link, physicsClientId=cid, **kwargs)
         for a, b in _excluded_pairs(self.spec):

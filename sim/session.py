@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from sim.contact_models import CONTACT_MODELS, contact_physics
 from sim.field import DEFAULT_SUBSTEPS, Ball, build_field
 from sim.monitor import (
     DropBall,
@@ -88,11 +89,20 @@ class SessionConfig:
     see_interval: int = 3
     beam_noise_xy: float = 0.05
     beam_noise_angle_deg: float = 10.0
+    #: contact model (``sim.contact_models``): "soft" (tuned, the foot pushes the ball) or
+    #: "strike" (the ground carries the softness, the foot strikes the ball at bounce 0.8)
+    contact: str = "soft"
+    #: False: no contacts between a robot's own parts, as on the real server
+    self_collision: bool = True
     referee: RefereeConfig = field(default_factory=RefereeConfig)
 
     def __post_init__(self) -> None:
         if self.substeps < 0:
             raise ValueError(f"substeps must be >= 0, got {self.substeps}")
+        if self.contact not in CONTACT_MODELS:
+            raise ValueError(
+                f"contact must be one of {', '.join(CONTACT_MODELS)}, got {self.contact!r}"
+            )
         if self.see_interval < 1:
             raise ValueError(f"see_interval must be >= 1, got {self.see_interval}")
 
@@ -138,9 +148,13 @@ class Session:
 
     def __init__(self, config: SessionConfig | None = None) -> None:
         self.config = config or SessionConfig()
-        self.world = PhysicsWorld(substeps=self.config.substeps or BASE_SUBSTEPS)
-        self.field = build_field(self.world)
-        self.ball = Ball.create(self.world, (0.0, 0.0, BALL_RADIUS))
+        self.contact = contact_physics(self.config.contact, self.config.self_collision)
+        self.world = PhysicsWorld(
+            substeps=self.config.substeps or BASE_SUBSTEPS,
+            min_bounce_speed=self.contact.min_bounce_speed,
+        )
+        self.field = build_field(self.world, self.contact.ground, self.contact.post_restitution)
+        self.ball = Ball.create(self.world, (0.0, 0.0, BALL_RADIUS), self.contact.ball)
         self.referee = Referee(self.config.referee, seed=self.config.seed)
         self.scene = SceneGraph()
         self.rng = np.random.default_rng(self.config.seed)
@@ -358,7 +372,7 @@ class Session:
         if robot_type not in range(5):
             return [f"unknown robot type {robot_type}: valid types are 0-4"]
         x, y = self._spawn_point(slot.agent_id)
-        slot.robot = SimRobot(self.world, robot_type)
+        slot.robot = SimRobot(self.world, robot_type, self.contact.robot)
         slot.robot.place(x, y, BEAM_HEIGHT, yaw_deg=90.0)
         slot.robot_type = robot_type
         seed = int(self.rng.integers(2**63))

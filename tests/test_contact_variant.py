@@ -21,21 +21,10 @@ from sim.robot import RobotPhysics, SimRobot
 FOOT_SPEED = 2.0
 
 
-def _robot_foot_dynamics(physics: RobotPhysics) -> dict[str, float]:
-    """``changeDynamics`` settings a robot collider gets from ``physics`` (as SimRobot sets)."""
-    params = {"lateralFriction": physics.lateral_friction, "restitution": physics.restitution}
-    if physics.soft_contacts:
-        params |= {
-            "contactStiffness": physics.contact_stiffness,
-            "contactDamping": physics.contact_damping,
-        }
-    return params
-
-
 def _strike_ratio() -> float:
     """Ball launch speed over the speed of a rigidly driven foot box with the current robot
     physics hitting a resting ball of the current ball physics."""
-    dynamics = _robot_foot_dynamics(sim.robot.DEFAULT_PHYSICS)
+    dynamics = sim.robot.DEFAULT_PHYSICS.collider_dynamics()
     launch = foot_strike_speed(
         FOOT_SPEED, sim.field.DEFAULT_SUBSTEPS, foot_dynamics=dynamics, ball_physics=None
     )

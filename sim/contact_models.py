@@ -1,0 +1,103 @@
+"""Contact models of the stand-in: where the ground's softness sits, how the ball bounces off a
+foot, and whether a robot's own parts touch each other.
+
+Bullet makes a contact soft when EITHER body carries soft-contact parameters (stiffness in
+series, damping summed) and multiplies the two bodies' restitutions. The real server's contacts
+are set per pair (ODE surface parameters), so one model cannot match every pair at once:
+
+* ``soft`` (the default, tuned against the real server's traces): every robot collider carries
+  the ground contact's spring (1000 N/m, 80 N s/m per contact point), so foot-ball and
+  robot-robot contacts are that spring too; a foot pushes the ball (ball speed = foot speed).
+* ``strike``: the spring sits on the ground instead. Robot-ground contacts stay the same spring
+  (1000 N/m in series with a rigid body, 80 + 0 N s/m); foot-ball and robot-robot contacts
+  become rigid. Restitutions are chosen so the products match the real server: foot-ball,
+  ball-ground and ball-post 0.8 (the ball's bounce), robot-robot and robot-ground 0.01; no
+  contact closing slower than 0.8 m/s bounces (the real server's minimum bounce velocity). A
+  driven foot then gives the ball 1.8x its speed, as off a rigid foot on the real server.
+
+``self_collision`` False lets no two parts of one robot touch, as on the real server
+(``nao_hetero.rsg``: each NAO is a ``Space`` with ``disableInnerCollision true``); see
+``sim/robot.py``.
+
+The session builds its world from :func:`contact_physics` (``contact`` and ``self_collision``
+in ``config/server.yaml``); the defaults give exactly the physics built before these options.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import sim.field
+import sim.robot
+from sim.field import BallPhysics, GroundPhysics
+from sim.robot import RobotPhysics
+
+#: The contact models :func:`contact_physics` knows.
+CONTACT_MODELS = ("soft", "strike")
+#: Restitution of robot links under ``strike``: with robot r, ball 0.8 / r and ground r, the
+#: products foot-ball and ball-ground are 0.8 while robot-robot and robot-ground are r^2
+#: (0.01: no bounce). Bullet does not clamp one body's value above 1, only products matter.
+STRIKE_ROBOT_RESTITUTION = 0.1
+#: The real server's minimum bounce velocity of the ball's contacts (nao-model-facts.md);
+#: Bullet's own threshold is 0.2 m/s and applies to every contact.
+STRIKE_MIN_BOUNCE_SPEED = 0.8
+
+
+@dataclass(frozen=True)
+class ContactPhysics:
+    """Everything a world needs to build its contacts: robot, ground and ball materials, the
+    goal posts' restitution and the world's minimum bounce speed (None: Bullet's own)."""
+
+    robot: RobotPhysics
+    ground: GroundPhysics
+    ball: BallPhysics
+    post_restitution: float
+    min_bounce_speed: float | None = None
+
+
+def soft_contact() -> ContactPhysics:
+    """Today's tuned contacts, read from the module defaults when called (benchmark variants
+    patch those defaults, and a session built inside a variant must follow them)."""
+    return ContactPhysics(
+        robot=sim.robot.DEFAULT_PHYSICS,
+        ground=sim.field.DEFAULT_GROUND,
+        ball=sim.field.DEFAULT_BALL,
+        post_restitution=sim.field.POST_RESTITUTION,
+    )
+
+
+def strike_contact(base: ContactPhysics, bounce: bool = True) -> ContactPhysics:
+    """``base`` with the robots' soft-contact parameters moved onto the ground (see the module
+    docstring). Without ``bounce`` the robot links keep restitution 0 (a rigid foot-ball
+    contact that does not bounce), the ball and ground their own."""
+    robot, ball = base.robot, base.ball
+    robot_r = STRIKE_ROBOT_RESTITUTION if bounce else 0.0
+    ball_r = ball.restitution / STRIKE_ROBOT_RESTITUTION if bounce else ball.restitution
+    ground_r = ball.restitution / ball_r
+    return ContactPhysics(
+        robot=dataclasses.replace(robot, soft_contacts=False, restitution=robot_r),
+        ground=dataclasses.replace(
+            base.ground,
+            restitution=ground_r,
+            contact_stiffness=robot.contact_stiffness,
+            contact_damping=robot.contact_damping,
+        ),
+        ball=dataclasses.replace(ball, restitution=ball_r),
+        post_restitution=base.post_restitution * ground_r,
+        min_bounce_speed=STRIKE_MIN_BOUNCE_SPEED,
+    )
+
+
+def contact_physics(model: str = "soft", self_collision: bool = True) -> ContactPhysics:
+    """The contacts of contact model ``model`` (one of :data:`CONTACT_MODELS`), with or without
+    contacts between a robot's own parts."""
+    if model not in CONTACT_MODELS:
+        raise ValueError(f"unknown contact model {model!r}; valid: {', '.join(CONTACT_MODELS)}")
+    physics = soft_contact()
+    if model == "strike":
+        physics = strike_contact(physics)
+    if physics.robot.self_collision != self_collision:
+        robot = dataclasses.replace(physics.robot, self_collision=self_collision)
+        physics = dataclasses.replace(physics, robot=robot)
+    return physics

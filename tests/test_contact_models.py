@@ -1,0 +1,119 @@
+"""The server's contact options (``contact`` and ``self_collision`` in ``config/server.yaml``,
+``sim.contact_models``): the defaults build today's physics, ``strike`` makes a driven foot
+strike the ball at 1 + 0.8 times its speed, and ``self_collision: false`` keeps a robot's own
+parts from touching, as on the real server."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pybullet
+import pytest
+
+import sim.field
+import sim.robot
+from sim.contact_models import contact_physics
+from sim.field import DEFAULT_SUBSTEPS, foot_strike_speed
+from sim.physics import PhysicsWorld
+from sim.robot import SimRobot
+from sim.session import Session, SessionConfig
+from world.yaml_config import ConfigError, config_from_mapping
+
+CONFIG = Path(__file__).resolve().parents[1] / "config" / "server.yaml"
+FOOT_SPEED = 2.0
+#: Hip rolls that cross the legs (each leg swung inwards), so the feet and shanks overlap.
+CROSSED_LEGS_DEG = {"llj2": -40.0, "rlj2": 40.0}
+
+
+def _strike_ratio(model: str) -> float:
+    """Ball launch speed over the speed of a driven foot box touching the ball as a robot's
+    foot does under contact model ``model``."""
+    physics = contact_physics(model)
+    launch = foot_strike_speed(
+        FOOT_SPEED,
+        DEFAULT_SUBSTEPS,
+        foot_dynamics=physics.robot.collider_dynamics(),
+        ball_physics=physics.ball,
+        min_bounce_speed=physics.min_bounce_speed,
+    )
+    return launch / FOOT_SPEED
+
+
+def _self_contacts(self_collision: bool) -> int:
+    """Contact points between parts of one robot whose legs are set crossed in the air."""
+    world = PhysicsWorld(substeps=2)
+    try:
+        physics = contact_physics("soft", self_collision).robot
+        robot = SimRobot(world, 0, physics, position=(0.0, 0.0, 1.0))
+        robot.place(0.0, 0.0, 1.0, 0.0, CROSSED_LEGS_DEG)
+        pybullet.setGravity(0.0, 0.0, 0.0, physicsClientId=world.client)
+        world.step_cycle()
+        contacts = pybullet.getContactPoints(
+            bodyA=robot.body_id, bodyB=robot.body_id, physicsClientId=world.client
+        )
+        return len(contacts)
+    finally:
+        world.close()
+
+
+def test_server_yaml_keeps_the_frozen_physics() -> None:
+    config = SessionConfig.from_yaml(CONFIG)
+    assert (config.contact, config.self_collision) == ("soft", True)
+    session = Session(config)
+    try:
+        assert session.contact == contact_physics()
+        assert session.contact.robot is sim.robot.DEFAULT_PHYSICS
+        assert session.contact.ball is sim.field.DEFAULT_BALL
+        assert session.contact.min_bounce_speed is None
+    finally:
+        session.world.close()
+
+
+def test_unknown_contact_model_is_a_clear_error() -> None:
+    with pytest.raises(ConfigError, match="contact must be one of soft, strike"):
+        config_from_mapping(SessionConfig, {"contact": "bouncy"}, source="server.yaml")
+
+
+def test_soft_foot_pushes_and_strike_foot_strikes() -> None:
+    assert _strike_ratio("soft") == pytest.approx(1.0, abs=0.1)
+    assert _strike_ratio("strike") == pytest.approx(1.8, abs=0.1)
+
+
+def test_strike_restitution_products_are_the_real_servers() -> None:
+    """Bullet multiplies the bodies' restitutions: foot-ball, ball-ground and ball-post 0.8
+    (the ball's bounce), robot-robot and robot-ground at most 0.01."""
+    physics = contact_physics("strike")
+    robot, ball = physics.robot.restitution, physics.ball.restitution
+    ground = physics.ground.restitution
+    assert robot * ball == pytest.approx(0.8)
+    assert ball * ground == pytest.approx(0.8)
+    assert ball * physics.post_restitution == pytest.approx(0.8)
+    assert max(robot * robot, robot * ground) <= 0.0101
+    assert physics.ground.contact_stiffness == contact_physics().robot.contact_stiffness
+
+
+def test_without_self_collision_a_robots_parts_pass_through_each_other() -> None:
+    assert _self_contacts(True) > 0
+    assert _self_contacts(False) == 0
+
+
+def test_strike_session_without_self_collision_stands_a_robot() -> None:
+    """The option reaches the robots a session creates, and a robot stands on the strike
+    model's ground as on today's (the same robot-ground spring)."""
+    heights = {}
+    for contact in ("soft", "strike"):
+        config = SessionConfig(seed=1, beam_noise=False, contact=contact, self_collision=False)
+        session = Session(config)
+        try:
+            agent = session.add_agent()
+            session.handle_message(agent, b"(scene rsg/agent/nao/nao_hetero.rsg 0)")
+            session.step()
+            robot = session.agents[agent].robot
+            assert robot is not None and not robot.physics.self_collision
+            for _ in range(100):
+                session.step()
+            assert not robot.has_fallen()
+            heights[contact] = robot.torso_position()[2]
+        finally:
+            session.world.close()
+    assert heights["strike"] == pytest.approx(heights["soft"], abs=0.002)
