@@ -31,6 +31,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from agent.attack_keeper import aim_point, contested, detour_point, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
 from behaviors.basic_kick import expected_ball_ego
 from behaviors.kick import FEET, kick_motion
@@ -111,6 +112,27 @@ class AttackConfig:
     #: ``keeper_near_m`` of the goal centre (0: always aim at the centre)
     aim_side_m: float = 0.6
     keeper_near_m: float = 2.5
+    #: aim ``aim_post_margin_m`` inside the post of the side that the keeper (as above)
+    #: leaves most open as seen from the ball (:func:`agent.attack_keeper.open_side`), kept
+    #: until the other side is better by ``aim_switch_deg`` (0: the rule of ``aim_side_m``)
+    aim_post_margin_m: float = 0.0
+    aim_switch_deg: float = 10.0
+    #: an opponent less than ``detour_ahead_m`` ahead of the ball and ``detour_clear_m``
+    #: beside the line to the aim makes the player take the ball to the point level with it
+    #: and ``detour_clear_m`` to its side (:func:`agent.attack_keeper.detour_point`),
+    #: instead of the dodge's fixed turn (0: off, the dodge below)
+    detour_clear_m: float = 0.0
+    detour_ahead_m: float = 2.0
+    #: count a stall only while dribbling: walking round a ball that lies still is no stall
+    #: (otherwise a player lining up near the goal starts the slow stall shot at a free ball)
+    stall_only_dribbling: bool = False
+    #: an opponent within ``yield_opponent_m`` of the ball on its far side while this player
+    #: is within ``yield_reach_m`` of it (:func:`agent.attack_keeper.contested`) makes the
+    #: player stop and step in place for up to ``yield_s``, instead of walking into the ball
+    #: against it; then it plays on for at least ``yield_s`` before it yields again (0 m: off)
+    yield_opponent_m: float = 0.0
+    yield_reach_m: float = 0.6
+    yield_s: float = 2.0
     #: when the ball has moved less than ``stall_m`` in ``stall_s`` of going for it (two
     #: players pushing it against each other), take it ``escape_deg`` off the line to the
     #: aim, towards the side of fewer opponents, for ``escape_s`` (0 s: never)
@@ -363,6 +385,12 @@ class Strategy:
         self._snap_stop_since: float | None = None
         #: no new snap shot before this world time (one was just given up)
         self._snap_not_before = 0.0
+        #: the goal side aimed at past a keeper (+1 / -1), None before a keeper was seen
+        self._aim_side: float | None = None
+        #: yielding a contested ball: when (world time) it began, None while not yielding
+        self._yield_since: float | None = None
+        #: no new yield before this world time
+        self._yield_not_before = 0.0
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``), any beam and the claim
@@ -516,6 +544,16 @@ class Strategy:
         keeper = opponents.nearest(goal, world.time, OPPONENT_MEMORY_S)
         if keeper is None or math.dist(keeper.position, goal) > attack.keeper_near_m:
             return goal
+        ball = world.ball.position
+        if attack.aim_post_margin_m > 0.0 and ball is not None:
+            self._aim_side = open_side(
+                ball,
+                keeper.position[:2],
+                attack.aim_post_margin_m,
+                self._aim_side,
+                attack.aim_switch_deg,
+            )
+            return aim_point(self._aim_side, attack.aim_post_margin_m)
         side = -1.0 if keeper.position[1] >= 0.0 else 1.0
         return (HALF_LENGTH, side * min(attack.aim_side_m, GOAL_WIDTH / 2 - 0.2))
 
@@ -527,6 +565,10 @@ class Strategy:
             return
         attack = self.config.attack
         bx, by = world.ball.position
+        if self._yielding(world) and "walk_velocity" in skills:
+            self._dribbling = False
+            behavior.execute("walk_velocity", 0.0, 0.0, 0.0)
+            return
         snap_allowed = "kick" in skills and (world.time or 0.0) >= self._snap_not_before
         if snap_allowed and self.snap_foot(world) is not None:
             self._dribbling = self._shooting = False
@@ -536,6 +578,9 @@ class Strategy:
         if self._shooting:
             self._end_overdue_shot(world, (bx, by))
         goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
+        detour = self._detour(world, (bx, by), (goal_x, goal_y))
+        if detour is not None:
+            goal_x, goal_y = detour
         to_goal = math.atan2(goal_y - by, goal_x - bx)
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
         can_dribble = "dribble" in skills
@@ -563,12 +608,56 @@ class Strategy:
             )
             self._dribbling = ready or (self._dribbling and near_ball)
             if self._dribbling:
-                heading = dodge_heading(
-                    (bx, by), math.degrees(to_goal), self._opponent_positions(world), attack
-                )
+                heading = math.degrees(to_goal)
+                if attack.detour_clear_m <= 0.0:
+                    heading = dodge_heading(
+                        (bx, by), heading, self._opponent_positions(world), attack
+                    )
                 behavior.execute("dribble", attack.dribble_kind, heading, "left")
                 return
         behavior.execute("walk", approach[0], approach[1], math.degrees(to_goal))
+
+    def _yielding(self, world) -> bool:
+        """Whether to stand off a contested ball this cycle (:attr:`AttackConfig.yield_opponent_m`):
+        yes from the moment it is contested, for at most ``yield_s`` or until it is no longer
+        contested; then not again for ``yield_s``."""
+        attack = self.config.attack
+        now = world.time or 0.0
+        if attack.yield_opponent_m <= 0.0 or world.pose is None:
+            return False
+        is_contested = contested(
+            (world.pose.x, world.pose.y),
+            world.ball.position,
+            self._opponent_positions(world),
+            attack.yield_opponent_m,
+            attack.yield_reach_m,
+        )
+        if self._yield_since is not None:
+            if is_contested and now - self._yield_since < attack.yield_s:
+                return True
+            self._yield_since = None
+            self._yield_not_before = now + attack.yield_s
+            return False
+        if is_contested and now >= self._yield_not_before:
+            self._yield_since = now
+            return True
+        return False
+
+    def _detour(
+        self, world, ball: tuple[float, float], aim: tuple[float, float]
+    ) -> tuple[float, float] | None:
+        """The point beside the nearest opponent in the way to take the ball to instead of
+        ``aim`` (:attr:`AttackConfig.detour_clear_m`), or None."""
+        attack = self.config.attack
+        if attack.detour_clear_m <= 0.0:
+            return None
+        points = [
+            detour_point(ball, aim, opponent, attack.detour_clear_m, attack.detour_ahead_m)
+            for opponent in sorted(
+                self._opponent_positions(world), key=lambda p: math.dist(p, ball)
+            )
+        ]
+        return next((point for point in points if point is not None), None)
 
     def snap_foot(self, world) -> str | None:
         """The foot for a snap shot now (see :attr:`AttackConfig.snap_range_m`), or None: the
@@ -666,6 +755,8 @@ class Strategy:
         attack = self.config.attack
         now = world.time or 0.0
         at_ball = math.dist((world.pose.x, world.pose.y), ball) < attack.dribble_keep_m
+        if attack.stall_only_dribbling and not self._dribbling:
+            at_ball = False
         if not at_ball or attack.stall_s <= 0.0:
             self._stall.reset()  # walking up to a ball that lies still is no stall
         elif (

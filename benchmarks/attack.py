@@ -12,7 +12,7 @@ the attacker has to beat a keeper that guards its line and comes out for the bal
 situation in which matches stall near the goal.
 
 Run: ``.venv/bin/python benchmarks/attack.py [--trials 5] [--seconds 120] [--type 0] [--seed 0]
-[--keeper] [--config team.yaml] [--set strategy.attack.KEY=VALUE ...]``;
+[--keeper] [--start-x X] [--config team.yaml] [--set strategy.attack.KEY=VALUE ...]``;
 prints ``attack_goals``, ``attack_goal_rate``, ``attack_time_to_goal_s_median`` and
 ``attack_falls``.
 """
@@ -20,6 +20,7 @@ prints ``attack_goals``, ``attack_goal_rate``, ``attack_time_to_goal_s_median`` 
 from __future__ import annotations
 
 import argparse
+import random
 import statistics
 import sys
 from dataclasses import dataclass
@@ -35,6 +36,10 @@ from sim.session import Session, SessionConfig
 
 #: cycles before kick-off: beam, stand up, settle
 PREPARE_CYCLES = 100
+#: the attacker starts this far behind the ball (m)
+START_BEHIND_BALL_M = 0.5
+#: the start's y lies within this of the middle (m)
+START_MAX_Y_M = 1.5
 
 
 @dataclass(frozen=True)
@@ -53,9 +58,11 @@ def run_attack(
     strategy: StrategyConfig | None = None,
     keeper: bool = False,
     trace_every_s: float = 0.0,
+    start_x: float = 0.0,
 ) -> AttackResult:
     """One trial; see the module docstring. With ``trace_every_s`` it prints, that often, the
-    ball's place and each robot's place and current skill (to see where an attack stalls)."""
+    ball's place and each robot's place and current skill (to see where an attack stalls);
+    with ``start_x`` > 0 the trial starts at the goal (``--start-x``)."""
     session = Session(SessionConfig(seed=seed))
     try:
         agents = {}
@@ -68,7 +75,10 @@ def run_attack(
             session.handle_message(slot, agents[slot].greeting())
         for _ in range(PREPARE_CYCLES):
             _step(session, agents)
-        session.trainer("(playMode KickOff_Left)")
+        if start_x > 0.0:
+            session.trainer("(playMode PlayOn)" + _start_commands(start_x, seed, unum))
+        else:
+            session.trainer("(playMode KickOff_Left)")
         robot = session.agents[next(iter(agents))].robot
         falls, was_fallen = 0, False
         for cycle in range(round(seconds / CYCLE_SECONDS)):
@@ -83,6 +93,17 @@ def run_attack(
         return AttackResult(False, None, falls)
     finally:
         session.close()
+
+
+def _start_commands(start_x: float, seed: int, unum: int) -> str:
+    """Trainer commands placing the ball at (``start_x``, y) and the attacker behind it
+    facing +x (the trainer's angle 0 faces +y), y drawn from ``seed``."""
+    y = random.Random(seed).uniform(-START_MAX_Y_M, START_MAX_Y_M)
+    x = start_x - START_BEHIND_BALL_M
+    return (
+        f"(ball (pos {start_x} {y:.3f} 0.042) (vel 0 0 0))"
+        f"(agent (unum {unum}) (team Left) (move {x} {y:.3f} 0.4 -90))"
+    )
 
 
 def _step(session: Session, agents: dict[int, Agent]) -> None:
@@ -118,6 +139,12 @@ def main() -> None:
         "--keeper", action="store_true", help="the right team fields its goalkeeper"
     )
     parser.add_argument(
+        "--start-x",
+        type=float,
+        default=0.0,
+        help="start at the goal: ball at this x, attacker behind it, PlayOn (0: kick-off)",
+    )
+    parser.add_argument(
         "--trace", type=float, default=0.0, help="print the scene every this many seconds"
     )
     parser.add_argument("--config", help="team YAML whose strategy to use (default: built-in)")
@@ -135,6 +162,7 @@ def main() -> None:
             strategy=strategy,
             keeper=args.keeper,
             trace_every_s=args.trace,
+            start_x=args.start_x,
         )
         results.append(result)
         time_text = f"{result.time_to_goal_s:.1f} s" if result.scored else "no goal"

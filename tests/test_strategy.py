@@ -8,6 +8,7 @@ from types import SimpleNamespace
 
 import pytest
 
+from agent.attack_keeper import detour_point, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
 from agent.strategy import (
     AttackConfig,
@@ -174,6 +175,67 @@ def test_it_aims_away_from_a_goalkeeper_it_sees():
     assert behavior.calls[-1][3] == pytest.approx(math.degrees(math.atan2(-0.6, 5.0)))
 
 
+def test_it_aims_inside_the_post_the_keeper_leaves_open_as_seen_from_the_ball():
+    # from a ball out on the left, a keeper just left of the goal centre covers the far
+    # (right) side best: the near post is the open one, though the keeper stands at y > 0
+    assert open_side((12.0, 2.0), (14.3, 0.3), margin_m=0.3, current=None, switch_deg=0.0) == 1
+    assert open_side((12.0, 0.0), (14.3, 0.3), 0.3, None, 0.0) == -1
+    keeper = SimpleNamespace(unum=1, position=(14.3, 0.3))
+    strategy = Strategy(StrategyConfig(attack=AttackConfig(aim_post_margin_m=0.3)))
+    scene = world(ball=(12.0, 2.0), pose=(11.0, 2.0, 0.0), opponents=[keeper])
+    assert strategy.aim(scene) == pytest.approx((15.0, 0.75))
+
+
+def test_the_aimed_side_is_kept_until_the_other_side_is_clearly_more_open():
+    # from straight in front, a keeper 0.1 m right of the middle leaves the left side a
+    # little more open: not enough to turn the dribble from the right side over
+    ball, keeper = (11.0, 0.0), (14.3, -0.1)
+    assert open_side(ball, keeper, 0.3, current=None, switch_deg=10.0) == 1
+    assert open_side(ball, keeper, 0.3, current=-1.0, switch_deg=10.0) == -1
+    assert open_side(ball, (14.3, -0.6), 0.3, current=-1.0, switch_deg=10.0) == 1
+
+
+def test_a_keeper_in_the_way_is_passed_beside_it_on_its_open_side():
+    ball, aim = (12.0, 0.0), (15.0, 0.0)
+    # keeper 1 m ahead, 0.2 m left of the line: pass 0.9 m from it on the right
+    assert detour_point(ball, aim, (13.0, 0.2), clear_m=0.9, ahead_m=2.0) == pytest.approx(
+        (13.0, -0.7)
+    )
+    # behind the ball, too far ahead or clear of the line: no detour
+    for keeper in [(11.5, 0.0), (14.5, 0.0), (13.0, 1.0)]:
+        assert detour_point(ball, aim, keeper, 0.9, 2.0) is None
+    # in the strategy: an opponent in the way out in the field (the aim is the goal centre)
+    attack = AttackConfig(detour_clear_m=0.9, detour_ahead_m=2.0)
+    strategy = Strategy(StrategyConfig(attack=attack))
+    behavior = RecordingBehavior("walk", "dribble")
+    rival = SimpleNamespace(unum=4, position=(9.0, 0.2))
+    strategy.decide(world((8.0, 0.0), (7.75, 0.17, -30.0), opponents=[rival]), behavior)
+    expected = math.degrees(math.atan2(-0.7, 1.0))
+    assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(expected))
+
+
+def test_a_ball_an_opponent_holds_from_the_far_side_is_stood_off_for_a_while_if_told_so():
+    attack = AttackConfig(yield_opponent_m=0.5, yield_reach_m=0.6, yield_s=2.0)
+    strategy = Strategy(StrategyConfig(attack=attack))
+    behavior = RecordingBehavior("walk", "walk_velocity", "dribble")
+    keeper = SimpleNamespace(unum=1, position=(13.3, 0.0))  # at the ball, beyond it
+    scene = world((13.0, 0.0), (12.7, 0.0, 0.0), opponents=[keeper])
+    skills = []
+    for k in range(150):  # 3 s
+        scene.time = 10.0 + 0.02 * k
+        strategy.decide(scene, behavior)
+        skills.append(behavior.calls[-1][0])
+    assert behavior.calls[0] == ("walk_velocity", 0.0, 0.0, 0.0)
+    assert skills[:100] == ["walk_velocity"] * 100  # stood off 2 s ...
+    assert skills[100:] == ["dribble"] * 50  # ... then plays on, not standing off at once
+    # an opponent behind this player, or this player too far from the ball: no standing off
+    behind = SimpleNamespace(unum=1, position=(12.5, 0.0))
+    for opponent, pose in [(behind, (12.7, 0.0, 0.0)), (keeper, (12.0, 0.0, 0.0))]:
+        fresh = Strategy(StrategyConfig(attack=attack))
+        fresh.decide(world((13.0, 0.0), pose, opponents=[opponent]), behavior)
+        assert behavior.calls[-1][0] != "walk_velocity"
+
+
 def test_only_a_stand_when_walking_does_not_exist():
     behavior = RecordingBehavior()
     Strategy().decide(world(ball=(0.0, 0.0), pose=(-1.0, 0.0, 0.0)), behavior)
@@ -246,6 +308,23 @@ def test_walking_up_to_a_still_ball_is_no_stall():
         scene.time = 10.0 + 0.02 * k
         strategy.decide(scene, behavior)
     assert behavior.calls[-1] == ("walk", pytest.approx(-0.3), pytest.approx(0.0), 0.0)
+
+
+def test_walking_round_a_still_ball_near_the_goal_starts_no_stall_shot_if_told_so():
+    def last_skill_after_walking_round(attack: AttackConfig) -> str:
+        strategy, behavior = (
+            Strategy(StrategyConfig(attack=attack)),
+            RecordingBehavior("walk", "dribble", "basic_kick"),
+        )
+        # in front of the ball near the goal, within dribble_keep_m of it: going round it
+        scene = world((12.5, 0.0), (12.9, 0.1, 180.0))
+        for k in range(260):
+            scene.time = 10.0 + 0.02 * k
+            strategy.decide(scene, behavior)
+        return behavior.calls[-1][0]
+
+    assert last_skill_after_walking_round(AttackConfig()) == "basic_kick"
+    assert last_skill_after_walking_round(AttackConfig(stall_only_dribbling=True)) == "walk"
 
 
 def test_a_dribbler_that_ends_up_over_the_ball_steps_off_it():
