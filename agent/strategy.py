@@ -106,6 +106,12 @@ class AttackConfig:
     #: ahead (benchmarks/attack.py --trials 3: median 31.1 s to the goal, against 57.8 s with
     #: ``--set strategy.attack.dribble_kind=dfdl``)
     dribble_kind: str = "lfdl"
+    #: within ``near_goal_dribble_m`` of the opponent goal centre dribble with this gait
+    #: instead ("": the same gait everywhere). Why: LFDL's strides push the ball up to a
+    #: metre ahead, the player falls back to walking after it, and a keeper that comes out
+    #: meets the loose ball first; DFDL keeps it closer, slower
+    near_goal_dribble_kind: str = ""
+    near_goal_dribble_m: float = 5.0
     #: a player not behind the ball goes round it, passing this far to its side
     round_ball_m: float = 0.5
     #: aim this far from the goal centre, on the side away from a goalkeeper standing within
@@ -387,6 +393,8 @@ class Strategy:
         self._snap_not_before = 0.0
         #: the goal side aimed at past a keeper (+1 / -1), None before a keeper was seen
         self._aim_side: float | None = None
+        #: the dribble gait of the dribble under way (chosen as it starts)
+        self._gait: str | None = None
         #: yielding a contested ball: when (world time) it began, None while not yielding
         self._yield_since: float | None = None
         #: no new yield before this world time
@@ -606,16 +614,31 @@ class Strategy:
                 math.dist((pose.x, pose.y), behind) < attack.dribble_start_m
                 and facing < attack.dribble_align_deg
             )
+            starting = not self._dribbling
             self._dribbling = ready or (self._dribbling and near_ball)
             if self._dribbling:
+                if starting or self._gait is None:
+                    # the gait is chosen as a dribble starts: a walk engine changed mid-stride
+                    # starts from its first step, under a robot that is in its last one
+                    self._gait = self._dribble_kind((bx, by))
                 heading = math.degrees(to_goal)
                 if attack.detour_clear_m <= 0.0:
                     heading = dodge_heading(
                         (bx, by), heading, self._opponent_positions(world), attack
                     )
-                behavior.execute("dribble", attack.dribble_kind, heading, "left")
+                behavior.execute("dribble", self._gait, heading, "left")
                 return
         behavior.execute("walk", approach[0], approach[1], math.degrees(to_goal))
+
+    def _dribble_kind(self, ball: tuple[float, float]) -> str:
+        """The dribble gait for a ball here (:attr:`AttackConfig.near_goal_dribble_kind`)."""
+        attack = self.config.attack
+        near = math.dist(ball, (HALF_LENGTH, 0.0)) < attack.near_goal_dribble_m
+        return (
+            attack.near_goal_dribble_kind
+            if near and attack.near_goal_dribble_kind
+            else (attack.dribble_kind)
+        )
 
     def _yielding(self, world) -> bool:
         """Whether to stand off a contested ball this cycle (:attr:`AttackConfig.yield_opponent_m`):

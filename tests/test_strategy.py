@@ -236,6 +236,21 @@ def test_a_ball_an_opponent_holds_from_the_far_side_is_stood_off_for_a_while_if_
         assert behavior.calls[-1][0] != "walk_velocity"
 
 
+def test_near_the_goal_a_dribble_starts_with_the_near_goal_gait_and_keeps_it_if_told_so():
+    attack = AttackConfig(near_goal_dribble_kind="dfdl", near_goal_dribble_m=5.0)
+    strategy, behavior = (
+        Strategy(StrategyConfig(attack=attack)),
+        RecordingBehavior("walk", "dribble"),
+    )
+    strategy.decide(world((9.0, 0.0), (8.7, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")  # 6 m out: the usual gait ...
+    strategy.decide(world((10.3, 0.0), (10.0, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")  # ... kept while this dribble lasts
+    strategy.decide(world((13.0, 0.0), (10.0, 0.0, 0.0)), behavior)  # the ball got away
+    strategy.decide(world((13.0, 0.0), (12.7, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "dfdl")  # a new dribble 2 m out
+
+
 def test_only_a_stand_when_walking_does_not_exist():
     behavior = RecordingBehavior()
     Strategy().decide(world(ball=(0.0, 0.0), pose=(-1.0, 0.0, 0.0)), behavior)
