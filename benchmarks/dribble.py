@@ -32,6 +32,11 @@ issue's episodes dribble at a random direction from -180 to 180 deg, so the gait
 ball round. Those runs report per angle (``[angle=90]``) and add ``first_metre_s``: seconds
 until the ball first lay 1 m along the new direction from its start (mean over the runs that
 got there; ``first_metre_reached`` counts them).
+
+``--trace 3`` prints, for every run, one ``run[...]`` line (how it ended, when, where) and,
+for a run that fell or lost the ball, its last 3 s every 0.1 s (``trace[...]`` lines: phase,
+ground-truth ball in the torso frame, the perceived ball, heading error, the command, torso tilt
+and each foot's distance to the ball): falls must be explained before parameters change.
 """
 
 from __future__ import annotations
@@ -40,7 +45,7 @@ import argparse
 import math
 import statistics
 import tempfile
-from collections import defaultdict
+from collections import defaultdict, deque
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -69,6 +74,8 @@ REGAINED_DISTANCE = 0.6
 HOLD_RADIUS = 0.12
 HOLD_RESET_S = 0.5
 BALL_Z = 0.042
+#: A trace keeps one sample in this many cycles (0.1 s).
+TRACE_EVERY = 5
 
 
 @dataclass
@@ -95,6 +102,9 @@ class DribbleRun:
     phase_distances: dict[tuple[int, bool], list[float]] = field(
         default_factory=lambda: defaultdict(list)
     )
+    seed: int = 0
+    #: the last ``trace_seconds`` of the run, one line per sample (empty unless asked for)
+    trace: list[str] = field(default_factory=list)
 
     @property
     def speed(self) -> float:
@@ -180,13 +190,16 @@ def run_dribble(
     max_seconds: float | None = None,
     data_file: Path = DRIBBLE_FILE,
     start_angle_deg: float = 0.0,
+    trace_seconds: float = 0.0,
 ) -> DribbleRun:
     """Dribble until the ball travelled ``distance`` m along ``direction_deg`` (or fell, or
     ``max_seconds``, by default the time at 0.2 m/s plus 2 s, plus 4 s per 90 deg of
     ``start_angle_deg``), with the gait settings of ``data_file``. The robot starts facing
-    ``start_angle_deg`` to the right of the direction, the ball 0.3 m ahead of it."""
+    ``start_angle_deg`` to the right of the direction, the ball 0.3 m ahead of it. With
+    ``trace_seconds`` the run keeps its last that many seconds as :attr:`DribbleRun.trace`."""
     session, agent = start_dribble_episode(robot_type, direction_deg - start_angle_deg, seed)
-    result = DribbleRun(kind, robot_type, foot, direction_deg, start_angle_deg)
+    result = DribbleRun(kind, robot_type, foot, direction_deg, start_angle_deg, seed=seed)
+    recent: deque[str] = deque(maxlen=max(1, round(trace_seconds / (CYCLE * TRACE_EVERY))))
     skill = agent.behavior.skill("dribble")
     skill.data_file = data_file
     turn_allowance = 4.0 * abs(start_angle_deg) / 90.0
@@ -219,16 +232,63 @@ def run_dribble(
             result.distance = ux * (bx - start_x) + uy * (by - start_y)
             if result.first_metre_s is None and result.distance >= 1.0:
                 result.first_metre_s = result.seconds
+            if trace_seconds > 0.0 and cycle % TRACE_EVERY == 0:
+                recent.append(_trace_line(result.seconds, agent, session))
             if agent.robot.has_fallen():
                 result.fell = True
                 break
             if result.distance >= distance:
                 result.reached = True
                 break
+        if trace_seconds > 0.0:
+            recent.append(_trace_line(result.seconds, agent, session))
     finally:
         session.close()
     result.max_held_s = holding.longest
+    result.trace = list(recent)
     return result
+
+
+def _trace_line(seconds: float, agent: LocalAgent, session: Session) -> str:
+    """One trace sample: what the robot did and where the ball lay (ground truth next to what
+    the skill perceived), so that a fall can be told apart: trodden on the ball, spun while
+    turning, tipped while braking ..."""
+    skill = agent.behavior.skill("dribble")
+    bx, by, _ = session.ball.position()
+    tx, ty, _ = agent.robot.torso_position()
+    yaw = math.radians(agent.robot.torso_yaw_deg())
+    c, s = math.cos(yaw), math.sin(yaw)
+    ahead, side = c * (bx - tx) + s * (by - ty), -s * (bx - tx) + c * (by - ty)
+    tilt = math.degrees(math.acos(max(-1.0, min(1.0, float(agent.robot.torso_up()[2])))))
+    feet = agent.robot.body_positions(["lfoot", "rfoot"])
+    lf, rf = (math.hypot(feet[f][0] - bx, feet[f][1] - by) for f in ("lfoot", "rfoot"))
+    seen = skill.last_inputs
+    perceived = (
+        "seen -"
+        if seen is None
+        else f"seen ({seen.ball_x:+.2f},{seen.ball_y:+.2f}) err {seen.heading_error_deg:+5.1f}"
+    )
+    vx, vy, turn = skill.last_command
+    t, left = skill.phase
+    return (
+        f"{seconds:6.2f}s phase ({t},{'L' if left else 'R'}) ball ({ahead:+.2f},{side:+.2f}) "
+        f"{perceived} cmd ({vx:+.2f},{vy:+.2f},{turn:+5.1f}) tilt {tilt:4.1f} "
+        f"feet-ball L {lf:.2f} R {rf:.2f}"
+    )
+
+
+def run_lines(run: DribbleRun) -> list[str]:
+    """A ``run[...]`` line per run (how it ended) and, when it fell or lost the ball, its
+    trace."""
+    ending = "fell" if run.fell else "reached" if run.reached else "timeout"
+    key = f"{run.kind}][type{run.robot_type}][seed={run.seed}][angle={run.start_angle_deg:g}"
+    lines = [
+        f"run[{key}]: {ending} at {run.seconds:.2f}s, {run.distance:.2f} m, "
+        f"{run.ball_losses} losses, max gap {run.max_gap:.2f} m"
+    ]
+    if run.fell or run.ball_losses:
+        lines += [f"trace[{key}]: {sample}" for sample in run.trace]
+    return lines
 
 
 def report_lines(runs: list[DribbleRun]) -> list[str]:
@@ -282,8 +342,10 @@ def with_settings(overrides: list[str], folder: Path, source: Path = DRIBBLE_FIL
     return path
 
 
-def _run_one(arguments: tuple[str, int, float, str, float, int, Path, float]) -> DribbleRun:
-    kind, robot_type, distance, foot, direction, seed, data_file, angle = arguments
+def _run_one(
+    arguments: tuple[str, int, float, str, float, int, Path, float, float],
+) -> DribbleRun:
+    kind, robot_type, distance, foot, direction, seed, data_file, angle, trace = arguments
     return run_dribble(
         kind,
         robot_type,
@@ -293,6 +355,7 @@ def _run_one(arguments: tuple[str, int, float, str, float, int, Path, float]) ->
         seed,
         data_file=data_file,
         start_angle_deg=angle,
+        trace_seconds=trace,
     )
 
 
@@ -309,6 +372,9 @@ def main(argv: list[str] | None = None) -> None:
     )
     parser.add_argument("--set", action="append", default=[], metavar="DOTTED.KEY=VALUE")
     parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument(
+        "--trace", type=float, default=0.0, metavar="SECONDS", help="per-run lines and traces"
+    )
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory() as folder:
         data_file = with_settings(args.set, Path(folder)) if args.set else DRIBBLE_FILE
@@ -318,9 +384,14 @@ def main(argv: list[str] | None = None) -> None:
                     for angle in args.angles:
                         common = (args.distance, args.foot, args.direction)
                         jobs = [
-                            (kind, robot_type, *common, s, data_file, angle) for s in args.seeds
+                            (kind, robot_type, *common, s, data_file, angle, args.trace)
+                            for s in args.seeds
                         ]
-                        for line in report_lines(list(pool.map(_run_one, jobs))):
+                        runs = list(pool.map(_run_one, jobs))
+                        if args.trace > 0.0:
+                            for line in (line for run in runs for line in run_lines(run)):
+                                print(line, flush=True)
+                        for line in report_lines(runs):
                             print(line, flush=True)
 
 

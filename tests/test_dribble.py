@@ -485,3 +485,19 @@ def test_a_start_at_an_angle_turns_the_ball_round_without_falling(kind, angle, s
     run = run_dribble(kind, 0, distance=2.0, seed=seed, start_angle_deg=angle, max_seconds=12.0)
     assert not run.fell  # before: LFDL fell after 3.1 s, DFDL after 5.6 s
     assert run.reached  # the ball went 2 m along the new direction within 12 s
+
+
+def test_benchmark_trace_keeps_the_last_seconds_and_shows_them_for_a_fall():
+    """``benchmarks.dribble --trace S``: a run keeps its last S seconds (one sample per 0.1 s,
+    ground truth next to what the skill perceived), and the per-run lines show the trace only
+    for a run that fell or lost the ball (the falls must be explained, not only counted)."""
+    from benchmarks.dribble import run_dribble, run_lines
+
+    run = run_dribble("dfdl", 0, distance=5.0, seed=0, max_seconds=1.0, trace_seconds=0.5)
+    assert len(run.trace) == 5  # 0.5 s at one sample per 0.1 s, the run's last cycle newest
+    assert run.trace[-1].lstrip().startswith("1.00s")
+    assert all("phase" in line and "feet-ball" in line for line in run.trace)
+    assert run_lines(run)[0].startswith("run[dfdl][type0][seed=0][angle=0]: timeout")
+    assert len(run_lines(run)) == 1 + len(run.trace) * (run.fell or run.ball_losses > 0)
+    run.fell = True
+    assert run_lines(run)[1:] == [f"trace[dfdl][type0][seed=0][angle=0]: {s}" for s in run.trace]
