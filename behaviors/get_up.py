@@ -25,11 +25,13 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
+from typing import Any
 
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.keyframes import KeyframePlayer, KeyframeSequence, default_sequences, mirrored
-from behaviors.poses import get_pose
+from behaviors.poses import DATA_DIR, PoseError, check_fields, get_pose, read_yaml_mapping
 from behaviors.skill import Skill, SkillContext
 from world.robot_state import GRAVITY, RobotState
 
@@ -66,44 +68,95 @@ ABORT_BACK_DEG = 40.0
 class RiseBalance:
     """A balance correction while a get-up rises: the hip and ankle pitch joints aim further
     forward in proportion to how far the torso (from the IMU's tilt estimate) leans back past
-    ``setpoint_deg``. Why: type 4 comes up to 0.6 of standing height in the crouch, then tips
-    slowly backwards (pitch -13 to -50 deg) and lies again; a fixed pose that is forward enough
-    for those falls throws the others onto their faces, a correction from the measured lean
-    moves only as far as each fall needs.
+    ``setpoint_deg``, and further back in proportion to how far it leans forward past
+    ``forward_setpoint_deg``. Why: type 4 comes up to 0.6 of standing height in the crouch,
+    then tips slowly backwards (pitch -13 to -50 deg) and lies again; the front get-ups of
+    types 0-3 come up over the folded legs and then tip forward onto the face (traces: pitch
+    17 deg at 0.8 s, 70 deg at 1.05 s). A fixed pose that is forward (or back) enough for
+    those falls throws the others the other way; a correction from the measured lean moves
+    only as far as each fall needs.
 
-    It acts from frame ``from_frame`` on. The offset is handed to the keyframe player as a
-    measured angle that lags the real one, so it works the same for predictive and gain frames.
+    The lean it acts on is predicted ``horizon_s`` ahead from the pitch rate (a PD term: a
+    torso that starts tipping is corrected before it has gone far). It acts from frame
+    ``from_frame`` on. The offset is handed to the keyframe player as a measured angle that
+    lags the real one, so it works the same for predictive and gain frames.
     """
 
     from_frame: int
-    #: torso pitch (deg, positive forwards) below which the correction starts
-    setpoint_deg: float
-    #: degrees of joint offset per degree of backward lean, by joint (both legs)
+    #: torso pitch (deg, positive forwards) below which the forward correction starts
+    #: (None: never)
+    setpoint_deg: float | None
+    #: degrees of joint offset per degree of lean past a setpoint, by joint (both legs);
+    #: positive moves the joint up when the torso leans back
     gains: Mapping[str, float]
-    #: the offset never exceeds this many degrees
+    #: the offset never exceeds this many degrees either way
     max_offset_deg: float
+    #: torso pitch above which the backward correction starts (None: never)
+    forward_setpoint_deg: float | None = None
+    #: seconds ahead the pitch is predicted from its rate (0: proportional only)
+    horizon_s: float = 0.0
 
-    def offsets(self, pitch_deg: float) -> dict[str, float]:
-        """Joint offsets (deg) for the torso's pitch now: zero while it leans back less than
-        the setpoint, then proportional, clipped."""
-        lean_back = max(0.0, self.setpoint_deg - pitch_deg)
-        return {
-            name: min(self.max_offset_deg, gain * lean_back) for name, gain in self.gains.items()
-        }
+    def offsets(self, pitch_deg: float, pitch_rate_deg_s: float = 0.0) -> dict[str, float]:
+        """Joint offsets (deg) for the torso's pitch (and pitch rate) now: zero while the
+        predicted lean is between the setpoints, then proportional, clipped."""
+        lean = pitch_deg + self.horizon_s * pitch_rate_deg_s
+        error = 0.0
+        if self.setpoint_deg is not None and lean < self.setpoint_deg:
+            error = self.setpoint_deg - lean
+        elif self.forward_setpoint_deg is not None and lean > self.forward_setpoint_deg:
+            error = self.forward_setpoint_deg - lean
+        limit = self.max_offset_deg
+        return {name: max(-limit, min(limit, gain * error)) for name, gain in self.gains.items()}
+
+
+BALANCE_FILE = DATA_DIR / "get_up_balance.yaml"
+_BALANCE_REQUIRED = {"description", "from_frame", "gains", "max_offset_deg"}
+_BALANCE_OPTIONAL = {"setpoint_deg", "forward_setpoint_deg", "horizon_s"}
+
+
+def _number(data: Mapping[str, Any], key: str, where: str, default: float | None) -> float | None:
+    value = data.get(key, default)
+    if value is None or (isinstance(value, (int, float)) and not isinstance(value, bool)):
+        return None if value is None else float(value)
+    raise PoseError(f"{where}: {key} must be a number or null, got {value!r}")
+
+
+def parse_balances(data: Mapping[str, Any], where: str) -> dict[str, RiseBalance]:
+    """Balance corrections by sequence name from a YAML mapping; errors name the entry."""
+    out = {}
+    for name, entry in data.items():
+        here = f"{where}: {name}"
+        check_fields(entry, here, _BALANCE_REQUIRED, _BALANCE_OPTIONAL)
+        gains = entry["gains"]
+        if not isinstance(gains, dict) or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in gains.values()
+        ):
+            raise PoseError(f"{here}: gains must map joint names to numbers, got {gains!r}")
+        from_frame = entry["from_frame"]
+        if not isinstance(from_frame, int) or from_frame < 0:
+            raise PoseError(f"{here}: from_frame must be a frame index >= 0, got {from_frame!r}")
+        max_offset = _number(entry, "max_offset_deg", here, None)
+        if max_offset is None or max_offset <= 0:
+            raise PoseError(f"{here}: max_offset_deg must be a positive number")
+        out[name] = RiseBalance(
+            from_frame=from_frame,
+            setpoint_deg=_number(entry, "setpoint_deg", here, None),
+            gains=MappingProxyType({str(k): float(v) for k, v in gains.items()}),
+            max_offset_deg=max_offset,
+            forward_setpoint_deg=_number(entry, "forward_setpoint_deg", here, None),
+            horizon_s=_number(entry, "horizon_s", here, 0.0) or 0.0,
+        )
+    return out
+
+
+def load_balances(path: Path = BALANCE_FILE) -> Mapping[str, RiseBalance]:
+    """Read and validate a balance file (default: the packaged ``get_up_balance.yaml``)."""
+    return MappingProxyType(parse_balances(read_yaml_mapping(path), str(path)))
 
 
 #: Balance corrections by sequence name (only where they were measured to help; round three
 #: found a closed-loop rise on type 0 front falls made it worse, so none is global).
-RISE_BALANCE: Mapping[str, RiseBalance] = MappingProxyType(
-    {
-        "get_up_back_type4": RiseBalance(
-            from_frame=4,
-            setpoint_deg=-3.0,
-            gains=MappingProxyType({"llj3": 4.0, "rlj3": 4.0}),
-            max_offset_deg=40.0,
-        ),
-    }
-)
+RISE_BALANCE: Mapping[str, RiseBalance] = load_balances()
 
 
 def feet_load(state: RobotState) -> float:
@@ -141,6 +194,8 @@ class _Attempt:
     #: the balance correction of this sequence (None: plays open loop) and from when it acts
     balance: RiseBalance | None = None
     balance_after_s: float = 0.0
+    #: the torso pitch of the last cycle (deg), for the pitch rate of the balance correction
+    last_pitch_deg: float | None = None
     settled_cycles: int = 0
     waited_cycles: int = 0
 
@@ -150,12 +205,19 @@ class GetUpSkill(Skill):
 
     name = "get_up"
 
-    def __init__(self, sequences: Mapping[str, KeyframeSequence] | None = None) -> None:
+    def __init__(
+        self,
+        sequences: Mapping[str, KeyframeSequence] | None = None,
+        balances: Mapping[str, RiseBalance] | None = None,
+    ) -> None:
         #: where the get-up sequences are looked up: the packaged ones unless a search
         #: (``learning/get_up_search.py``) plays candidates through the real skill
         self.sequences: Mapping[str, KeyframeSequence] = (
             default_sequences() if sequences is None else sequences
         )
+        #: balance corrections by sequence name: the packaged ones (RISE_BALANCE) unless a
+        #: benchmark (``benchmarks/get_up.py --balance FILE``) plays candidates
+        self.balances = balances
         self._attempt = _Attempt()
         self.attempts = 0
         #: the side the robot was found lying on when the current sequence started
@@ -217,7 +279,8 @@ class GetUpSkill(Skill):
                 if side == "back"
                 else (FRONT_UP_FRAMES, FRONT_UP_FRAMES)
             )
-            balance = RISE_BALANCE.get(sequence.name)
+            balances = RISE_BALANCE if self.balances is None else self.balances
+            balance = balances.get(sequence.name)
             self._attempt = _Attempt(
                 player,
                 abort_after_s=sum(frame.total for frame in sequence.frames[:sat_up]),
@@ -274,8 +337,11 @@ class GetUpSkill(Skill):
         balance = attempt.balance
         if balance is None or attempt.player.elapsed < attempt.balance_after_s:
             return state.joints_deg
+        pitch = state.pitch_deg
+        last = pitch if attempt.last_pitch_deg is None else attempt.last_pitch_deg
+        attempt.last_pitch_deg = pitch
         joints = dict(state.joints_deg)
-        for name, offset in balance.offsets(state.pitch_deg).items():
+        for name, offset in balance.offsets(pitch, (pitch - last) / CYCLE_SECONDS).items():
             if name in joints:
                 joints[name] -= offset
         return joints

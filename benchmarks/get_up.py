@@ -10,7 +10,7 @@ succeeds when the skill reports standing within ``time_limit`` seconds and the s
 second later.
 
 Run: ``.venv/bin/python benchmarks/get_up.py [--trials-per-type 20] [--seed 0]
-[--directions front,back] [--types 0,3]``; prints
+[--directions front,back] [--types 0,3] [--balance FILE]``; prints
 ``get_up_success_rate: X``, ``get_up_time_s_median: Y`` and per-type success rates.
 """
 
@@ -19,7 +19,7 @@ from __future__ import annotations
 import argparse
 import statistics
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -27,6 +27,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from behaviors.get_up import GetUpSkill, RiseBalance, load_balances
 from behaviors.joint_control import CYCLE_SECONDS
 from learning.falls import FALL_DIRECTIONS, join_at_random_spot, knock_over
 from learning.local_agent import LocalAgent
@@ -55,8 +56,10 @@ def run_trial(
     seed: int,
     time_limit: float = 4.0,
     observer: Observer | None = None,
+    balances: Mapping[str, RiseBalance] | None = None,
 ) -> TrialResult:
-    """One fall and one get-up; see the module docstring for what counts as success."""
+    """One fall and one get-up; see the module docstring for what counts as success.
+    ``balances`` replaces the packaged balance corrections (a candidate file)."""
     rng = np.random.default_rng(seed)
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     try:
@@ -65,6 +68,10 @@ def run_trial(
             raise RuntimeError(f"type {robot_type} seed {seed}: the robot did not fall {direction}")
         driver.perceive()
         lying_on = driver.state.lying_on
+        if balances is not None:
+            skill = driver.behavior.skill("get_up")
+            assert isinstance(skill, GetUpSkill)
+            skill.balances = balances
         cycles = 0
         finished = False
         while not finished and cycles < round(time_limit / CYCLE_SECONDS):
@@ -100,7 +107,14 @@ def main() -> None:
         action="store_true",
         help="list the failed trials (type, direction, seed) for learning/get_up_trace.py",
     )
+    parser.add_argument(
+        "--balance",
+        type=Path,
+        help="balance corrections from this YAML file instead of the packaged "
+        "behaviors/data/get_up_balance.yaml (a candidate, measured before it is adopted)",
+    )
     args = parser.parse_args()
+    balances = None if args.balance is None else load_balances(args.balance)
     directions = args.directions.split(",")
     robot_types = [int(t) for t in args.types.split(",")]
     results = []
@@ -108,7 +122,9 @@ def main() -> None:
         for k in range(args.trials_per_type):
             direction = directions[k % len(directions)]
             seed = args.seed + 1000 * robot_type + k
-            results.append(run_trial(robot_type, direction, seed, args.time_limit))
+            results.append(
+                run_trial(robot_type, direction, seed, args.time_limit, balances=balances)
+            )
     times = [r.time_s for r in results if r.time_s is not None]
     print(f"get_up_success_rate: {sum(r.succeeded for r in results) / len(results):.3f}")
     print(f"get_up_time_s_median: {statistics.median(times) if times else float('nan'):.2f}")

@@ -26,6 +26,8 @@ from behaviors.get_up import (
     SAT_UP_FRAMES,
     GetUpSkill,
     RiseBalance,
+    load_balances,
+    parse_balances,
     robot_stands,
     sequence_for,
 )
@@ -140,6 +142,42 @@ def test_the_rise_balance_acts_only_past_its_setpoint_and_is_clipped():
     assert balance.offsets(-3.0) == {"llj3": 0.0}
     assert balance.offsets(-8.0) == pytest.approx({"llj3": 20.0})
     assert balance.offsets(-60.0) == {"llj3": 40.0}
+
+
+def test_the_balance_corrects_both_ways_and_acts_early_on_a_fast_lean():
+    """A torso leaning forward past ``forward_setpoint_deg`` moves the joints the other way;
+    the pitch rate predicts the lean ``horizon_s`` ahead, so a torso still upright but tipping
+    fast is corrected before it has gone far."""
+    balance = RiseBalance(
+        from_frame=2,
+        setpoint_deg=None,
+        gains={"llj3": 2.0},
+        max_offset_deg=30.0,
+        forward_setpoint_deg=20.0,
+        horizon_s=0.1,
+    )
+    assert balance.offsets(-60.0) == {"llj3": 0.0}  # no backward setpoint: never
+    assert balance.offsets(25.0) == pytest.approx({"llj3": -10.0})
+    assert balance.offsets(15.0) == {"llj3": 0.0}
+    assert balance.offsets(15.0, 100.0) == pytest.approx({"llj3": -10.0})  # 25 deg in 0.1 s
+    assert balance.offsets(90.0) == {"llj3": -30.0}
+
+
+def test_balance_files_are_validated_with_the_entry_named(tmp_path):
+    good = {"description": "d", "from_frame": 4, "gains": {"llj3": 4}, "max_offset_deg": 40}
+    assert parse_balances({"x": good}, "f")["x"].setpoint_deg is None
+    for bad in (
+        {**good, "gains": {"llj3": "four"}},
+        {**good, "max_offset_deg": 0},
+        {**good, "from_frame": -1},
+        {**good, "setpoint": -3},  # misspelt key
+        {key: value for key, value in good.items() if key != "gains"},
+    ):
+        with pytest.raises(PoseError, match="f: x"):
+            parse_balances({"x": bad}, "f")
+    path = tmp_path / "balance.yaml"
+    path.write_text(yaml.safe_dump({"get_up_back": {**good, "setpoint_deg": -3.0}}))
+    assert load_balances(path)["get_up_back"].offsets(-8.0) == {"llj3": 20.0}
 
 
 def test_rise_balance_only_for_sequences_that_exist():
