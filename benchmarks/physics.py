@@ -262,11 +262,32 @@ def _contact(
     return apply
 
 
+#: The striking bodies of ``strike_feet``.
+FEET_AND_TOES = ("lfoot", "rfoot", "ltoe", "rtoe")
+
+
 def _without_self_collision(physics: ContactPhysics) -> ContactPhysics:
     """No contacts between a robot's own parts, as on the real server."""
     return dataclasses.replace(
         physics, robot=dataclasses.replace(physics.robot, self_collision=False)
     )
+
+
+@contextlib.contextmanager
+def _session_without_self_collision() -> Iterator[None]:
+    """Sessions built inside ask for no self-collision whatever their ``SessionConfig`` says
+    (benchmarks build their sessions with the default ``self_collision: true``, which would
+    otherwise put the contacts back)."""
+    original = sim.session.contact_physics
+
+    def without(model: str = "soft", self_collision: bool = True) -> ContactPhysics:
+        return original(model, False)
+
+    sim.session.contact_physics = without
+    try:
+        yield
+    finally:
+        sim.session.contact_physics = original
 
 
 def _strike(bounce: bool = True) -> Callable[[], contextlib.AbstractContextManager]:
@@ -313,8 +334,22 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "strike": _strike(bounce=True),
     "rigid": _strike(bounce=False),
     # the real server's rule: no contacts between a robot's own parts (disableInnerCollision)
-    "noself": _contact(_without_self_collision),
-    "strike_noself": _contact(lambda p: _without_self_collision(strike_contact(p))),
+    "noself": _together(_contact(_without_self_collision), _session_without_self_collision),
+    # strike at the feet only: feet and toes rigid, every other link keeps its soft contacts
+    # (so a robot's other self-contacts stay as today; those links touch the soft ground
+    # with both springs in series, 500 N/m and 160 N s/m)
+    "strike_feet": _contact(
+        lambda p: dataclasses.replace(
+            strike_contact(p),
+            robot=dataclasses.replace(
+                strike_contact(p).robot, soft_contacts=True, hard_bodies=FEET_AND_TOES
+            ),
+        )
+    ),
+    "strike_noself": _together(
+        _contact(lambda p: _without_self_collision(strike_contact(p))),
+        _session_without_self_collision,
+    ),
     # Floors of Bullet's cost, not candidates: one 0.02 s step per cycle and 10 or 5 solver
     # iterations (robots sag and rock at these counts). What 22 robots cost here bounds any
     # server built on PyBullet on this machine, whatever its Python does.

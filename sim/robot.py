@@ -85,13 +85,16 @@ class RobotPhysics:
     angular_drag: float = BODY_DRAG
     soft_contacts: bool = True
     self_collision: bool = True
+    #: bodies whose colliders stay rigid even with ``soft_contacts`` (research variants)
+    hard_bodies: tuple[str, ...] = ()
 
-    def collider_dynamics(self) -> dict[str, float]:
-        """``changeDynamics`` settings of every collider link: friction, bounce and, with
-        ``soft_contacts``, the ground contact's spring (probes that stand in for a foot use
-        them too, so they touch the ball as a robot's foot does)."""
+    def collider_dynamics(self, body: str = "") -> dict[str, float]:
+        """``changeDynamics`` settings of the collider of ``body``: friction, bounce and, with
+        ``soft_contacts`` (unless ``body`` is one of ``hard_bodies``), the ground contact's
+        spring (probes that stand in for a foot use them too, so they touch the ball as a
+        robot's foot does)."""
         params = {"lateralFriction": self.lateral_friction, "restitution": self.restitution}
-        if self.soft_contacts:
+        if self.soft_contacts and body not in self.hard_bodies:
             params |= {
                 "contactStiffness": self.contact_stiffness,
                 "contactDamping": self.contact_damping,
@@ -386,7 +389,7 @@ class SimRobot:
             link = self._link_of[body.name]
             kwargs = {"jointLimitForce": p.joint_limit_force} if link >= 0 else {}
             if body.collider:
-                kwargs |= p.collider_dynamics()
+                kwargs |= p.collider_dynamics(body.name)
             if kwargs:
                 pybullet.changeDynamics(bid, link, physicsClientId=cid, **kwargs)
         for a, b in _excluded_pairs(self.spec):

@@ -24,9 +24,13 @@ FOOT_SPEED = 2.0
 def _strike_ratio() -> float:
     """Ball launch speed over the speed of a rigidly driven foot box with the current robot
     physics hitting a resting ball of the current ball physics."""
-    dynamics = sim.robot.DEFAULT_PHYSICS.collider_dynamics()
+    return _strike_ratio_of(sim.robot.DEFAULT_PHYSICS.collider_dynamics())
+
+
+def _strike_ratio_of(foot_dynamics: dict[str, float]) -> float:
+    """The same for a foot box with the collider settings ``foot_dynamics``."""
     launch = foot_strike_speed(
-        FOOT_SPEED, sim.field.DEFAULT_SUBSTEPS, foot_dynamics=dynamics, ball_physics=None
+        FOOT_SPEED, sim.field.DEFAULT_SUBSTEPS, foot_dynamics=foot_dynamics, ball_physics=None
     )
     return launch / FOOT_SPEED
 
@@ -98,3 +102,31 @@ def test_strike_ball_physics_only_changes_restitution() -> None:
     with VARIANTS["strike"]():
         ball = sim.field.DEFAULT_BALL
     assert dataclasses.replace(ball, restitution=BallPhysics().restitution) == BallPhysics()
+
+
+@pytest.mark.parametrize("name", ["noself", "strike_noself"])
+def test_no_self_collision_variants_reach_sessions(name: str) -> None:
+    """Benchmarks build sessions with the default ``self_collision: true``; the variants must
+    still take a robot's self-contacts away there (a first version did not)."""
+    from sim.session import Session, SessionConfig
+
+    with VARIANTS[name]():
+        session = Session(SessionConfig())
+    try:
+        assert not session.contact.robot.self_collision
+    finally:
+        session.world.close()
+    session = Session(SessionConfig())
+    try:
+        assert session.contact.robot.self_collision
+    finally:
+        session.world.close()
+
+
+def test_strike_feet_keeps_other_links_soft_and_feet_striking() -> None:
+    with VARIANTS["strike_feet"]():
+        physics = sim.robot.DEFAULT_PHYSICS
+        foot_ratio = _strike_ratio_of(physics.collider_dynamics("lfoot"))
+        assert "contactStiffness" in physics.collider_dynamics("lthigh")
+        assert "contactStiffness" not in physics.collider_dynamics("rfoot")
+    assert foot_ratio == pytest.approx(1.8, abs=0.1)
