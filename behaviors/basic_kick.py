@@ -288,12 +288,12 @@ class BasicKickSkill(Skill):
             context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0)
             self._look_down(context)
             return False
-        motion = kick_motion(world.robot.robot_type, self.motions)
         if self.foot is None or (
             self.phase == "approach"
             and world.distance_to(world.ball.position) > CHOOSE_FOOT_DISTANCE_M
         ):
-            self.foot = self._choose_foot(context, motion, (target_x, target_y))
+            self.foot = self._choose_foot(context, (target_x, target_y))
+        motion = kick_motion(world.robot.robot_type, self.motions, self.foot)
         alignment = self._alignment(context, motion, (target_x, target_y))
         if self.phase in ("approach", "back_off"):
             self._approach(context, motion, (target_x, target_y))
@@ -371,15 +371,18 @@ class BasicKickSkill(Skill):
             self._settled = SETTLE_CYCLES - SHUFFLE_SETTLE_CYCLES
 
     # ------------------------------------------------------------------ measurements
-    def _choose_foot(
-        self, context: SkillContext, motion: KickMotion, target: tuple[float, float]
-    ) -> str:
+    def _choose_foot(self, context: SkillContext, target: tuple[float, float]) -> str:
         """The foot whose kicking spot lies nearer the robot (less walking)."""
         world = context.world
         ball = world.ball.position
         assert ball is not None
+        robot_type = world.robot.robot_type
         spots = {
-            foot: kick_spot(ball, target, expected_ball_ego(world.robot.robot_type, foot, motion))
+            foot: kick_spot(
+                ball,
+                target,
+                expected_ball_ego(robot_type, foot, kick_motion(robot_type, self.motions, foot)),
+            )
             for foot in FEET
         }
         return min(FEET, key=lambda foot: world.distance_to(spots[foot][:2]))

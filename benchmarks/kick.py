@@ -205,7 +205,7 @@ def run_trial(
             shuffle_in_place(driver, *shuffle_m)
         motions = settings.motions if motions is None else motions
         driver.behavior.skill("kick").motions = motions
-        motion = kick_motion(robot_type, motions)
+        motion = kick_motion(robot_type, motions, foot)
         robot = session.agents[driver.agent].robot
         bx, by = place_ball_in_front_of(
             driver, foot, motion.ball_gap_m + gap_error, motion.ball_side_m + side_error
@@ -354,6 +354,26 @@ class BasicKickResult:
     #: wants it, along the kicking foot (+ = further ahead) and across (+ = outwards); None
     #: when the kick never started
     placement_error_m: tuple[float, float] | None = None
+    #: where the robot first fell (:func:`fall_stage`); None when it did not
+    fall_stage: str | None = None
+
+
+#: Where a basic kick's fall happened: before the kick motion (walking, aligning, waiting), in
+#: the kick before the ball moved (weight shift, lift, wind-up, swing), in the kick after it
+#: (follow-through, landing, return to the stand), or while standing after the kick.
+FALL_STAGES = ("before_kick", "before_contact", "after_contact", "after_kick")
+
+
+def fall_stage(phase: str, contact: bool) -> str:
+    """The :data:`FALL_STAGES` entry of a fall first seen in ``basic_kick`` phase ``phase``
+    ("done" after the skill finished), ``contact``: whether the kick had moved the ball yet.
+    Why: the kick's falls before and after contact have different causes (one-leg balance
+    before the swing, landing after it), and the falls before the kick are the walk's."""
+    if phase == "done":
+        return "after_kick"
+    if phase != "kick":
+        return "before_kick"
+    return "after_contact" if contact else "before_contact"
 
 
 class BasicKickTrace:
@@ -450,14 +470,15 @@ def run_basic_trial(
         reach = 10.0 if isinstance(asked, str) else asked
         direction = math.radians(target_direction_deg)
         tx, ty = bx + reach * math.cos(direction), by + reach * math.sin(direction)
-        cycles, contact, fell, finished = 0, None, False, False
+        cycles, contact, finished = 0, None, False
         start = (bx, by)
         skill = driver.behavior.skill("basic_kick")
         placement = None
+        stage = None
         while not finished and cycles < BASIC_KICK_TIMEOUT_CYCLES:
             before = session.ball.position()
             if placement is None and skill.phase == "kick" and skill.foot is not None:
-                motion = kick_motion(robot_type, settings.motions)
+                motion = kick_motion(robot_type, settings.motions, skill.foot)
                 placement = ball_placement_error(driver, skill.foot, motion)
             phase = skill.phase
             finished = driver.run("basic_kick", tx, ty, asked)
@@ -468,20 +489,23 @@ def run_basic_trial(
             kicking = phase == "kick"
             if contact is None and kicking and session.ball.speed() > MOVING_SPEED:
                 contact, start = cycles, (before[0], before[1])
-            fell |= robot.has_fallen()
+            if stage is None and robot.has_fallen():
+                stage = fall_stage(phase, contact is not None)
         for _ in range(ROLL_OUT_CYCLES):
             driver.run("pose", "stand")
-            fell |= robot.has_fallen()
+            if stage is None and robot.has_fallen():
+                stage = fall_stage("done", contact is not None)
         x, y, _ = session.ball.position()
         travel = math.degrees(math.atan2(y - start[1], x - start[0]))
         return BasicKickResult(
             asked,
             math.hypot(x - start[0], y - start[1]),
             (travel - target_direction_deg + 180.0) % 360.0 - 180.0,
-            fell,
+            stage is not None,
             None if contact is None else contact * CYCLE_SECONDS,
             skill.foot,
             placement,
+            stage,
         )
     finally:
         session.close()
@@ -556,7 +580,8 @@ def basic_kick_figures(
     from ``seed``; trial ``k`` runs session seed ``k``): medians over the trials that kicked of
     ``basic_kick_distance_m``, ``basic_kick_direction_error_deg`` (absolute) and
     ``basic_kick_time_s`` (first ``basic_kick`` cycle to the ball moving), and the counts
-    ``basic_kick_falls`` and ``basic_kick_misses`` (trials that never kicked). ``only``: run
+    ``basic_kick_falls``, ``basic_kick_misses`` (trials that never kicked) and
+    ``basic_kick_falls_<stage>`` per :data:`FALL_STAGES` entry. ``only``: run
     just these trial numbers (same layouts); ``verbose`` prints each trial with its trace;
     ``settings``: the run's skill settings."""
     rng = np.random.default_rng(seed + 1)  # seed 0 keeps the layouts of earlier rounds
@@ -586,6 +611,9 @@ def basic_kick_figures(
         "basic_kick_time_s": _median([r.time_to_kick_s for r in kicked]),  # type: ignore[misc]
         "basic_kick_falls": float(sum(r.fell for r in results)),
         "basic_kick_misses": float(len(results) - len(kicked)),
+    } | {
+        f"basic_kick_falls_{stage}": float(sum(r.fall_stage == stage for r in results))
+        for stage in FALL_STAGES
     }
 
 
@@ -601,7 +629,7 @@ def basic_kicks(
     figures = basic_kick_figures(trials, robot_type, asked, seed, True, only, settings)
     label = f"[asked={asked}]"
     for name, value in figures.items():
-        if name in ("basic_kick_falls", "basic_kick_misses"):
+        if name.startswith(("basic_kick_falls", "basic_kick_misses")):
             print(f"{name}{label}: {value:.0f} of {trials}")
         else:
             print(f"{name}{label}: {value:.2f}")

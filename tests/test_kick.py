@@ -28,6 +28,7 @@ from behaviors.basic_kick import (
 from behaviors.joint_control import JointCommands
 from behaviors.kick import (
     KICK_LEFT,
+    KICK_RIGHT,
     KickMotion,
     KickSkill,
     default_kicks,
@@ -107,6 +108,19 @@ def test_bad_kick_files_name_the_problem(swing, message):
     data = {"k": {"frames": [{"duration": 0.1, "pose": "stand"}], "swing": swing}}
     with pytest.raises(PoseError, match=message.replace("(", r"\(").replace(")", r"\)")):
         parse_kicks(data, "k.yaml")
+
+
+def test_the_right_foot_plays_its_own_kick_where_the_file_has_one():
+    left = default_kicks()[KICK_LEFT]
+    right = replace(left, name=KICK_RIGHT, ball_gap_m=left.ball_gap_m + 0.01)
+    assert kick_motion(0, {KICK_LEFT: left}, "right") is left
+    both = {KICK_LEFT: left, KICK_RIGHT: right}
+    assert kick_motion(0, both, "right") is right
+    assert kick_motion(0, both, "left") is left
+    # written for the left foot, played mirrored: the right foot's ball lies mirror-wise
+    ahead, side = expected_ball_ego(0, "right", right)
+    mirror_ahead, mirror_side = expected_ball_ego(0, "left", right)
+    assert (ahead, side) == pytest.approx((mirror_ahead, -mirror_side))
 
 
 def test_distance_table_gives_the_strength_by_linear_interpolation_clipped_at_its_ends():
@@ -300,7 +314,7 @@ def test_basic_kick_figures_are_medians_over_the_kicks_and_counts_of_the_rest(mo
     outcomes = iter(
         [
             BasicKickResult(3.0, 2.0, -4.0, False, 8.0, "left"),
-            BasicKickResult(3.0, 3.0, 1.0, True, 10.0, "right"),
+            BasicKickResult(3.0, 3.0, 1.0, True, 10.0, "right", fall_stage="after_contact"),
             BasicKickResult(3.0, 0.0, 0.0, False, None, None),
             BasicKickResult(3.0, 4.0, 2.0, False, 9.0, "left"),
         ]
@@ -313,7 +327,25 @@ def test_basic_kick_figures_are_medians_over_the_kicks_and_counts_of_the_rest(mo
         "basic_kick_time_s": 9.0,
         "basic_kick_falls": 1.0,
         "basic_kick_misses": 1.0,
+        "basic_kick_falls_before_kick": 0.0,
+        "basic_kick_falls_before_contact": 0.0,
+        "basic_kick_falls_after_contact": 1.0,
+        "basic_kick_falls_after_kick": 0.0,
     }
+
+
+@pytest.mark.parametrize(
+    ("phase", "contact", "stage"),
+    [
+        ("approach", False, "before_kick"),
+        ("head_up", False, "before_kick"),
+        ("kick", False, "before_contact"),
+        ("kick", True, "after_contact"),
+        ("done", True, "after_kick"),
+    ],
+)
+def test_a_fall_is_placed_by_the_phase_and_whether_the_ball_was_kicked(phase, contact, stage):
+    assert kick_benchmark.fall_stage(phase, contact) == stage
 
 
 def test_a_shuffle_start_moves_the_standing_robot_by_the_asked_amount():
