@@ -200,8 +200,10 @@ def test_every_type_and_kind_has_parameters(kind, robot_type):
 
 
 def test_lfdl_keeps_the_ball_further_out_and_to_the_left():
+    """LFDL's ball lies out in front of the left foot; DFDL's between the feet's paths, since
+    the sixth round as far ahead as LFDL's (0.24 m: clear of the landing toes)."""
     dfdl, lfdl = dribble_gait("dfdl", 0), dribble_gait("lfdl", 0)
-    assert lfdl.ball_ahead > dfdl.ball_ahead
+    assert lfdl.ball_ahead >= dfdl.ball_ahead
     assert lfdl.ball_side > 0.0 == dfdl.ball_side
 
 
