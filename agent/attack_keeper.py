@@ -30,7 +30,7 @@ def open_side(
     keeper shuffling about the middle would otherwise turn the dribble back and forth, and
     every turn slows it down and loses the ball.
     """
-    keeper_bearing = math.atan2(keeper[1] - ball[1], keeper[0] - ball[0])
+    keeper_bearing = _bearing(ball, keeper)
     gaps = {
         side: abs(_wrap(_bearing(ball, aim_point(side, margin_m)) - keeper_bearing))
         for side in (1.0, -1.0)
@@ -58,7 +58,7 @@ def detour_point(
     the keeper, the sharper the turn needed to pass it, and past it the line to the aim is
     free again.
     """
-    heading = math.atan2(aim[1] - ball[1], aim[0] - ball[0])
+    heading = _bearing(ball, aim)
     ux, uy = math.cos(heading), math.sin(heading)
     rx, ry = keeper[0] - ball[0], keeper[1] - ball[1]
     along, across = rx * ux + ry * uy, -rx * uy + ry * ux

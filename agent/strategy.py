@@ -637,7 +637,7 @@ class Strategy:
         return (
             attack.near_goal_dribble_kind
             if near and attack.near_goal_dribble_kind
-            else (attack.dribble_kind)
+            else attack.dribble_kind
         )
 
     def _yielding(self, world) -> bool:

@@ -31,7 +31,14 @@ from typing import Any
 
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.keyframes import KeyframePlayer, KeyframeSequence, default_sequences, mirrored
-from behaviors.poses import DATA_DIR, PoseError, check_fields, get_pose, read_yaml_mapping
+from behaviors.poses import (
+    DATA_DIR,
+    PoseError,
+    check_fields,
+    check_number,
+    get_pose,
+    read_yaml_mapping,
+)
 from behaviors.skill import Skill, SkillContext
 from world.robot_state import GRAVITY, RobotState
 
@@ -114,11 +121,10 @@ _BALANCE_REQUIRED = {"description", "from_frame", "gains", "max_offset_deg"}
 _BALANCE_OPTIONAL = {"setpoint_deg", "forward_setpoint_deg", "horizon_s"}
 
 
-def _number(data: Mapping[str, Any], key: str, where: str, default: float | None) -> float | None:
-    value = data.get(key, default)
-    if value is None or (isinstance(value, (int, float)) and not isinstance(value, bool)):
-        return None if value is None else float(value)
-    raise PoseError(f"{where}: {key} must be a number or null, got {value!r}")
+def _optional_number(data: Mapping[str, Any], key: str, where: str) -> float | None:
+    """``data[key]`` as a float, None where it is left out or null."""
+    value = data.get(key)
+    return None if value is None else check_number(value, f"{where}.{key}")
 
 
 def parse_balances(data: Mapping[str, Any], where: str) -> dict[str, RiseBalance]:
@@ -128,23 +134,22 @@ def parse_balances(data: Mapping[str, Any], where: str) -> dict[str, RiseBalance
         here = f"{where}: {name}"
         check_fields(entry, here, _BALANCE_REQUIRED, _BALANCE_OPTIONAL)
         gains = entry["gains"]
-        if not isinstance(gains, dict) or not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) for v in gains.values()
-        ):
+        if not isinstance(gains, dict):
             raise PoseError(f"{here}: gains must map joint names to numbers, got {gains!r}")
+        gains = {str(k): check_number(v, f"{here}.gains.{k}") for k, v in gains.items()}
         from_frame = entry["from_frame"]
         if not isinstance(from_frame, int) or from_frame < 0:
             raise PoseError(f"{here}: from_frame must be a frame index >= 0, got {from_frame!r}")
-        max_offset = _number(entry, "max_offset_deg", here, None)
-        if max_offset is None or max_offset <= 0:
+        max_offset = check_number(entry["max_offset_deg"], f"{here}.max_offset_deg")
+        if max_offset <= 0:
             raise PoseError(f"{here}: max_offset_deg must be a positive number")
         out[name] = RiseBalance(
             from_frame=from_frame,
-            setpoint_deg=_number(entry, "setpoint_deg", here, None),
-            gains=MappingProxyType({str(k): float(v) for k, v in gains.items()}),
+            setpoint_deg=_optional_number(entry, "setpoint_deg", here),
+            gains=MappingProxyType(gains),
             max_offset_deg=max_offset,
-            forward_setpoint_deg=_number(entry, "forward_setpoint_deg", here, None),
-            horizon_s=_number(entry, "horizon_s", here, 0.0) or 0.0,
+            forward_setpoint_deg=_optional_number(entry, "forward_setpoint_deg", here),
+            horizon_s=_optional_number(entry, "horizon_s", here) or 0.0,
         )
     return out
 
@@ -217,7 +222,7 @@ class GetUpSkill(Skill):
         )
         #: balance corrections by sequence name: the packaged ones (RISE_BALANCE) unless a
         #: benchmark (``benchmarks/get_up.py --balance FILE``) plays candidates
-        self.balances = balances
+        self.balances: Mapping[str, RiseBalance] = RISE_BALANCE if balances is None else balances
         self._attempt = _Attempt()
         self.attempts = 0
         #: the side the robot was found lying on when the current sequence started
@@ -279,8 +284,7 @@ class GetUpSkill(Skill):
                 if side == "back"
                 else (FRONT_UP_FRAMES, FRONT_UP_FRAMES)
             )
-            balances = RISE_BALANCE if self.balances is None else self.balances
-            balance = balances.get(sequence.name)
+            balance = self.balances.get(sequence.name)
             self._attempt = _Attempt(
                 player,
                 abort_after_s=sum(frame.total for frame in sequence.frames[:sat_up]),

@@ -60,7 +60,7 @@ import sim.field
 import sim.physics
 import sim.robot
 import sim.session
-from sim.contact_models import ContactPhysics, soft_contact, strike_contact
+from sim.contact_models import ContactPhysics, soft_contact, strike_contact, with_self_collision
 from sim.field import Ball, build_field
 from sim.physics import CYCLE_SECONDS, PhysicsWorld
 from sim.robot import SimRobot
@@ -268,9 +268,16 @@ FEET_AND_TOES = ("lfoot", "rfoot", "ltoe", "rtoe")
 
 def _without_self_collision(physics: ContactPhysics) -> ContactPhysics:
     """No contacts between a robot's own parts, as on the real server."""
-    return dataclasses.replace(
-        physics, robot=dataclasses.replace(physics.robot, self_collision=False)
-    )
+    return with_self_collision(physics, False)
+
+
+def _strike_feet(physics: ContactPhysics) -> ContactPhysics:
+    """Strike at the feet only: feet and toes rigid, every other link keeps its soft contacts
+    (so a robot's other self-contacts stay as today; those links touch the soft ground with
+    both springs in series, 500 N/m and 160 N s/m)."""
+    strike = strike_contact(physics)
+    robot = dataclasses.replace(strike.robot, soft_contacts=True, hard_bodies=FEET_AND_TOES)
+    return dataclasses.replace(strike, robot=robot)
 
 
 @contextlib.contextmanager
@@ -335,17 +342,7 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "rigid": _strike(bounce=False),
     # the real server's rule: no contacts between a robot's own parts (disableInnerCollision)
     "noself": _together(_contact(_without_self_collision), _session_without_self_collision),
-    # strike at the feet only: feet and toes rigid, every other link keeps its soft contacts
-    # (so a robot's other self-contacts stay as today; those links touch the soft ground
-    # with both springs in series, 500 N/m and 160 N s/m)
-    "strike_feet": _contact(
-        lambda p: dataclasses.replace(
-            strike_contact(p),
-            robot=dataclasses.replace(
-                strike_contact(p).robot, soft_contacts=True, hard_bodies=FEET_AND_TOES
-            ),
-        )
-    ),
+    "strike_feet": _contact(_strike_feet),
     "strike_noself": _together(
         _contact(lambda p: _without_self_collision(strike_contact(p))),
         _session_without_self_collision,

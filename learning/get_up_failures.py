@@ -23,6 +23,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.get_up import GetUpSkill
+from behaviors.joint_control import CYCLE_SECONDS
 from benchmarks.get_up import run_trial
 from learning.get_up_trace import torso_pitch_roll_deg
 from learning.local_agent import LocalAgent
@@ -64,7 +65,7 @@ class TrialRecorder:
         if skill.attempts == 0:
             return
         if not self.attempts or self.attempts[-1].number != skill.attempts:
-            self.attempts.append(AttemptSummary(skill.attempts, started_s=cycle * 0.02))
+            self.attempts.append(AttemptSummary(skill.attempts, started_s=cycle * CYCLE_SECONDS))
         attempt = self.attempts[-1]
         if skill.playing is not None:
             attempt.sequence, attempt.played_s = skill.playing
@@ -72,7 +73,7 @@ class TrialRecorder:
         height = float(agent.robot.torso_position()[2]) / agent.robot.spec.sole_height()
         if height > attempt.peak_height:
             attempt.peak_height, attempt.pitch_at_peak = height, pitch
-            attempt.peak_at_s = cycle * 0.02 - attempt.started_s
+            attempt.peak_at_s = cycle * CYCLE_SECONDS - attempt.started_s
         attempt.end_height, attempt.end_pitch, attempt.end_roll = height, pitch, roll
 
 

@@ -89,6 +89,14 @@ def strike_contact(base: ContactPhysics, bounce: bool = True) -> ContactPhysics:
     )
 
 
+def with_self_collision(physics: ContactPhysics, self_collision: bool) -> ContactPhysics:
+    """``physics`` with or without contacts between a robot's own parts."""
+    if physics.robot.self_collision == self_collision:
+        return physics
+    robot = dataclasses.replace(physics.robot, self_collision=self_collision)
+    return dataclasses.replace(physics, robot=robot)
+
+
 def contact_physics(model: str = "soft", self_collision: bool = True) -> ContactPhysics:
     """The contacts of contact model ``model`` (one of :data:`CONTACT_MODELS`), with or without
     contacts between a robot's own parts."""
@@ -97,7 +105,4 @@ def contact_physics(model: str = "soft", self_collision: bool = True) -> Contact
     physics = soft_contact()
     if model == "strike":
         physics = strike_contact(physics)
-    if physics.robot.self_collision != self_collision:
-        robot = dataclasses.replace(physics.robot, self_collision=self_collision)
-        physics = dataclasses.replace(physics, robot=robot)
-    return physics
+    return with_self_collision(physics, self_collision)
