@@ -392,7 +392,9 @@ class SimRobot:
                 kwargs |= p.collider_dynamics(body.name)
             if kwargs:
                 pybullet.changeDynamics(bid, link, physicsClientId=cid, **kwargs)
-        for a, b in _excluded_pairs(self.spec):
+        # Without self-collision no pair of this robot's parts collides, so none to exclude.
+        excluded = _excluded_pairs(self.spec) if self.physics.self_collision else []
+        for a, b in excluded:
             pybullet.setCollisionFilterPair(
                 bid, bid, self._link_of[a], self._link_of[b], 0, physicsClientId=cid
             )
