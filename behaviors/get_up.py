@@ -17,6 +17,13 @@ four cycles behind its keyframes, as the gain-0.25 controller does, loses the mo
 A sequence named in :data:`RISE_BALANCE` (type 4's back get-up) closes the loop during its
 rise: the hip pitch joints aim further forward in proportion to the torso's backward lean.
 
+An optional learned residual (``GetUpSkill.residual``, a :class:`ResidualSource` such as
+:class:`PolicyResidual` running a numpy policy from ``learning/train.py``) adds bounded
+joint-target offsets (:data:`RESIDUAL_ACTIONS`) to the keyframes while a get-up sequence (not a
+side roll) plays, computed each cycle from :func:`residual_observation` (perception only). None
+is packaged until a trained one beats the keyframes on the benchmark: the default is
+``behaviors/data/get_up_residual.npz`` where that file exists, else no residual.
+
 Sequences are looked up per robot type first (``get_up_front_type3``), then by the common name
 (``get_up_front``), so a type whose longer legs need other angles overrides only what differs.
 """
@@ -27,10 +34,19 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
+from typing import Any, Protocol
 
-from behaviors.joint_control import CYCLE_SECONDS
-from behaviors.keyframes import KeyframePlayer, KeyframeSequence, default_sequences, mirrored
+import numpy as np
+
+from behaviors.joint_control import CYCLE_SECONDS, JointCommands
+from behaviors.keyframes import (
+    Keyframe,
+    KeyframePlayer,
+    KeyframeSequence,
+    default_sequences,
+    mirrored,
+)
+from behaviors.policy import MlpPolicy
 from behaviors.poses import (
     DATA_DIR,
     PoseError,
@@ -186,6 +202,135 @@ def sequence_for(
     return sequences.get(f"{base}_type{robot_type}") or sequences[base]
 
 
+# ------------------------------------------------------------------ learned residual
+#: The residual's actions, in the order a policy outputs them: each moves a group of joints
+#: (perceptor name, sign) by the same offset (deg) beyond the keyframe targets. Sagittal
+#: groups because the failures are sagittal (back sit-ups stalling, front get-ups tipping onto
+#: the face, squats tipping back); one hip roll group (both hips the same way: a sideways
+#: lean) for falls that come up askew.
+RESIDUAL_ACTIONS: Mapping[str, tuple[tuple[str, float], ...]] = MappingProxyType(
+    {
+        "hip_pitch": (("llj3", 1.0), ("rlj3", 1.0)),
+        "knee": (("llj4", 1.0), ("rlj4", 1.0)),
+        "ankle_pitch": (("llj5", 1.0), ("rlj5", 1.0)),
+        "shoulder_pitch": (("laj1", 1.0), ("raj1", 1.0)),
+        "hip_roll": (("llj2", 1.0), ("rlj2", 1.0)),
+    }
+)
+#: The largest offset (deg) of each action: a policy output of +-1.
+RESIDUAL_MAX_DEG: Mapping[str, float] = MappingProxyType(
+    {"hip_pitch": 20.0, "knee": 20.0, "ankle_pitch": 20.0, "shoulder_pitch": 30.0, "hip_roll": 10.0}
+)
+#: Joints the residual observes: every joint but the head and type 4's toes (all types have them).
+RESIDUAL_OBS_JOINTS = tuple(
+    f"{side}{limb}j{i}"
+    for side, limb, count in (("r", "a", 4), ("l", "a", 4), ("r", "l", 6), ("l", "l", 6))
+    for i in range(1, count + 1)
+)
+#: The get-up sequences the residual acts in (per-type variants share these prefixes).
+RESIDUAL_SEQUENCES = ("get_up_front", "get_up_back")
+ROBOT_TYPE_COUNT = 5
+#: The observation, entry by entry (a policy file must have been trained on exactly these).
+RESIDUAL_OBS_NAMES: tuple[str, ...] = (
+    *(f"gyro_{a}" for a in "xyz"),
+    *(f"acc_{a}" for a in "xyz"),
+    *(f"up_{a}" for a in "xyz"),
+    "pitch_deg",
+    "roll_deg",
+    "feet_load_fraction",
+    *(f"joint_{name}" for name in RESIDUAL_OBS_JOINTS),
+    *(f"sequence_{name}" for name in RESIDUAL_SEQUENCES),
+    "sequence_s",
+    "sequence_fraction",
+    *(f"robot_type_{t}" for t in range(ROBOT_TYPE_COUNT)),
+)
+RESIDUAL_FILE = DATA_DIR / "get_up_residual.npz"
+
+
+class ResidualSource(Protocol):
+    """Where the skill gets its residual: offsets (deg, one per :data:`RESIDUAL_ACTIONS`
+    entry) for an observation laid out as :data:`RESIDUAL_OBS_NAMES`."""
+
+    def residual_deg(self, observation: np.ndarray) -> np.ndarray: ...
+
+
+@dataclass(frozen=True)
+class PolicyResidual:
+    """A trained policy (numpy MLP) as the skill's residual source."""
+
+    policy: MlpPolicy
+
+    @classmethod
+    def load(cls, path: Path) -> PolicyResidual:
+        """Load a policy file, checking it takes this observation and gives these actions."""
+        policy = MlpPolicy.load(path, RESIDUAL_OBS_NAMES, tuple(RESIDUAL_ACTIONS))
+        expected = np.array([RESIDUAL_MAX_DEG[name] for name in RESIDUAL_ACTIONS])
+        if not np.allclose(policy.action_scale, expected):
+            raise ValueError(
+                f"{path}: action scale {policy.action_scale.tolist()} is not this skill's "
+                f"RESIDUAL_MAX_DEG {expected.tolist()}"
+            )
+        return cls(policy)
+
+    def residual_deg(self, observation: np.ndarray) -> np.ndarray:
+        return self.policy.act(observation)
+
+
+def default_residual() -> ResidualSource | None:
+    """The packaged residual where ``behaviors/data/get_up_residual.npz`` exists, else None."""
+    return PolicyResidual.load(RESIDUAL_FILE) if RESIDUAL_FILE.exists() else None
+
+
+def residual_observation(state: RobotState, player: KeyframePlayer | None) -> np.ndarray:
+    """What the residual sees (perception only): IMU, tilt estimate, foot load, joint angles,
+    which get-up sequence plays (``player``, None between attempts) and how far along, and
+    the robot type."""
+    sequence = np.zeros(len(RESIDUAL_SEQUENCES))
+    seconds = fraction = 0.0
+    if player is not None:
+        for i, prefix in enumerate(RESIDUAL_SEQUENCES):
+            if player.sequence.name.startswith(prefix):
+                sequence[i] = 1.0
+        seconds = player.elapsed
+        fraction = seconds / max(CYCLE_SECONDS, player.sequence.duration)
+    robot_type = np.zeros(ROBOT_TYPE_COUNT)
+    robot_type[state.robot_type] = 1.0
+    weight = state.spec.total_mass * GRAVITY
+    return np.concatenate(
+        [
+            state.gyro_deg_s,
+            state.accelerometer,
+            state.up,
+            [state.pitch_deg, state.roll_deg, feet_load(state) / weight],
+            [state.joints_deg.get(name, 0.0) for name in RESIDUAL_OBS_JOINTS],
+            sequence,
+            [seconds, fraction],
+            robot_type,
+        ]
+    ).astype(np.float32)
+
+
+def residual_offsets(residual_deg: np.ndarray) -> dict[str, float]:
+    """Joint offsets (deg) from the per-action offsets, clipped to :data:`RESIDUAL_MAX_DEG`."""
+    out: dict[str, float] = {}
+    for value, (action, joints) in zip(residual_deg, RESIDUAL_ACTIONS.items()):
+        limit = RESIDUAL_MAX_DEG[action]
+        clipped = max(-limit, min(limit, float(value)))
+        for joint, sign in joints:
+            out[joint] = out.get(joint, 0.0) + sign * clipped
+    return out
+
+
+def _frame_at(sequence: KeyframeSequence, seconds: float) -> Keyframe:
+    """The frame whose targets a player sends ``seconds`` into the sequence."""
+    end = 0.0
+    for frame in sequence.frames:
+        end += frame.total
+        if seconds <= end + 1e-9:
+            return frame
+    return sequence.frames[-1]
+
+
 @dataclass
 class _Attempt:
     """What the skill is doing now: which sequence it plays, and since when it waits."""
@@ -214,6 +359,7 @@ class GetUpSkill(Skill):
         self,
         sequences: Mapping[str, KeyframeSequence] | None = None,
         balances: Mapping[str, RiseBalance] | None = None,
+        residual: ResidualSource | None = None,
     ) -> None:
         #: where the get-up sequences are looked up: the packaged ones unless a search
         #: (``learning/get_up_search.py``) plays candidates through the real skill
@@ -223,10 +369,18 @@ class GetUpSkill(Skill):
         #: balance corrections by sequence name: the packaged ones (RISE_BALANCE) unless a
         #: benchmark (``benchmarks/get_up.py --balance FILE``) plays candidates
         self.balances: Mapping[str, RiseBalance] = RISE_BALANCE if balances is None else balances
+        #: a learned residual on top of the keyframes (None: the keyframes alone); the
+        #: packaged one where behaviors/data/get_up_residual.npz exists
+        self.residual: ResidualSource | None = default_residual() if residual is None else residual
         self._attempt = _Attempt()
         self.attempts = 0
         #: the side the robot was found lying on when the current sequence started
         self.lying_on: str | None = None
+
+    @property
+    def residual_active(self) -> bool:
+        """A get-up sequence (not a roll) plays: the residual acts in the next cycle."""
+        return self._attempt.player is not None and not self._attempt.rolling
 
     @property
     def playing(self) -> tuple[str, float] | None:
@@ -305,7 +459,13 @@ class GetUpSkill(Skill):
             self._attempt = _Attempt()  # lying again: settle briefly and start over
             self._hold_still(context, state)
             return False
-        finished = player.step(context.commands, self._balanced_joints(state))
+        joints = self._balanced_joints(state)
+        offsets = self._residual_offsets(state)
+        if offsets:  # predictive frames: the player sees the joints short by their offsets
+            joints = {name: angle - offsets.get(name, 0.0) for name, angle in joints.items()}
+        finished = player.step(context.commands, joints)
+        if offsets:
+            _shift_gain_targets(context.commands, player, offsets)
         if not attempt.rolling and self._in_final_hold(player) and robot_stands(state):
             self._attempt = _Attempt()  # up: the rest of the last hold only keeps the pose
             return True
@@ -350,6 +510,16 @@ class GetUpSkill(Skill):
                 joints[name] -= offset
         return joints
 
+    def observe(self, state: RobotState) -> np.ndarray:
+        """The residual's observation now (what a training environment hands its policy)."""
+        return residual_observation(state, self._attempt.player)
+
+    def _residual_offsets(self, state: RobotState) -> dict[str, float]:
+        """This cycle's residual joint offsets (deg); none without a residual or in a roll."""
+        if self.residual is None or self._attempt.rolling:
+            return {}
+        return residual_offsets(self.residual.residual_deg(self.observe(state)))
+
     @staticmethod
     def _in_final_hold(player: KeyframePlayer) -> bool:
         """The last frame has reached its targets; what is left of the sequence is its hold."""
@@ -364,3 +534,17 @@ class GetUpSkill(Skill):
     def _hold_still(self, context: SkillContext, state: RobotState) -> None:
         """While the body settles keep every joint where it is (no flailing)."""
         context.commands.set_targets(dict(state.joints_deg))
+
+
+def _shift_gain_targets(
+    commands: JointCommands, player: KeyframePlayer, offsets: Mapping[str, float]
+) -> None:
+    """Gain frames (the final rise to ``stand``) aim at targets through ``JointCommands``,
+    which compares them with the real angles: there the offsets move the targets themselves.
+    (The player's tracker keeps the unshifted targets; only a predictive frame after a gain
+    frame would read them, and no get-up sequence has one.)"""
+    targets = commands.targets()
+    shifted = {name: targets[name] + off for name, off in offsets.items() if name in targets}
+    if shifted:
+        frame = _frame_at(player.sequence, player.elapsed)
+        commands.set_targets(shifted, frame.gain)

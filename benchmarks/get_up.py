@@ -10,7 +10,7 @@ succeeds when the skill reports standing within ``time_limit`` seconds and the s
 second later.
 
 Run: ``.venv/bin/python benchmarks/get_up.py [--trials-per-type 20] [--seed 0]
-[--directions front,back] [--types 0,3] [--balance FILE]``; prints
+[--directions front,back] [--types 0,3] [--balance FILE] [--residual FILE]``; prints
 ``get_up_success_rate: X``, ``get_up_time_s_median: Y`` and per-type success rates.
 """
 
@@ -27,7 +27,13 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from behaviors.get_up import GetUpSkill, RiseBalance, load_balances
+from behaviors.get_up import (
+    GetUpSkill,
+    PolicyResidual,
+    ResidualSource,
+    RiseBalance,
+    load_balances,
+)
 from behaviors.joint_control import CYCLE_SECONDS
 from learning.falls import FALL_DIRECTIONS, join_at_random_spot, knock_over
 from learning.local_agent import LocalAgent
@@ -57,9 +63,11 @@ def run_trial(
     time_limit: float = 4.0,
     observer: Observer | None = None,
     balances: Mapping[str, RiseBalance] | None = None,
+    residual: ResidualSource | None = None,
 ) -> TrialResult:
     """One fall and one get-up; see the module docstring for what counts as success.
-    ``balances`` replaces the packaged balance corrections (a candidate file)."""
+    ``balances`` replaces the packaged balance corrections (a candidate file), ``residual``
+    the skill's learned residual (a trained policy)."""
     rng = np.random.default_rng(seed)
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     try:
@@ -68,10 +76,12 @@ def run_trial(
             raise RuntimeError(f"type {robot_type} seed {seed}: the robot did not fall {direction}")
         driver.perceive()
         lying_on = driver.state.lying_on
+        skill = driver.behavior.skill("get_up")
+        assert isinstance(skill, GetUpSkill)
         if balances is not None:
-            skill = driver.behavior.skill("get_up")
-            assert isinstance(skill, GetUpSkill)
             skill.balances = balances
+        if residual is not None:
+            skill.residual = residual
         cycles = 0
         finished = False
         while not finished and cycles < round(time_limit / CYCLE_SECONDS):
@@ -113,8 +123,15 @@ def main() -> None:
         help="balance corrections from this YAML file instead of the packaged "
         "behaviors/data/get_up_balance.yaml (a candidate, measured before it is adopted)",
     )
+    parser.add_argument(
+        "--residual",
+        type=Path,
+        help="a trained get-up residual policy (.npz from learning/train.py) on top of the "
+        "keyframes, measured before it is adopted as behaviors/data/get_up_residual.npz",
+    )
     args = parser.parse_args()
     balances = None if args.balance is None else load_balances(args.balance)
+    residual = None if args.residual is None else PolicyResidual.load(args.residual)
     directions = args.directions.split(",")
     robot_types = [int(t) for t in args.types.split(",")]
     results = []
@@ -123,7 +140,14 @@ def main() -> None:
             direction = directions[k % len(directions)]
             seed = args.seed + 1000 * robot_type + k
             results.append(
-                run_trial(robot_type, direction, seed, args.time_limit, balances=balances)
+                run_trial(
+                    robot_type,
+                    direction,
+                    seed,
+                    args.time_limit,
+                    balances=balances,
+                    residual=residual,
+                )
             )
     times = [r.time_s for r in results if r.time_s is not None]
     print(f"get_up_success_rate: {sum(r.succeeded for r in results) / len(results):.3f}")
