@@ -1,0 +1,136 @@
+"""The get-up residual environment: gymnasium's checks, reproducible resets, exact restores,
+and the residual hook's zero being the keyframes themselves."""
+
+from __future__ import annotations
+
+import copy
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+from behaviors.manager import Behavior
+from learning.envs import GET_UP_RESIDUAL_ID, GetUpEnvConfig, GetUpResidualEnv
+from learning.envs.get_up import EnvConfigError, restore_fall
+from learning.falls import join_at_random_spot, knock_over
+from learning.local_agent import LocalAgent
+from sim.session import Session, SessionConfig
+
+SMALL = {"robot_types": [1], "falls_per_type": 3, "bank_seed": 7}
+
+
+@pytest.fixture(scope="module")
+def env():
+    environment = GetUpResidualEnv(SMALL)
+    yield environment
+    environment.close()
+
+
+def _rollout(env: GetUpResidualEnv, seed: int, actions: np.ndarray) -> list[tuple]:
+    obs, _ = env.reset(seed=seed)
+    out = [(obs.tobytes(),)]
+    for action in actions:
+        obs, reward, terminated, truncated, _ = env.step(action)
+        out.append((obs.tobytes(), reward, terminated, truncated))
+        if terminated or truncated:
+            break
+    return out
+
+
+def test_check_env_passes(env):
+    check_env(env, skip_render_check=True)
+
+
+def test_registered_with_gymnasium():
+    made = gym.make(GET_UP_RESIDUAL_ID, config={**SMALL, "falls_per_type": 1})
+    try:
+        assert isinstance(made.unwrapped, GetUpResidualEnv)
+    finally:
+        made.close()
+
+
+def test_reset_with_a_seed_is_reproducible(env):
+    actions = np.random.default_rng(3).uniform(-1, 1, size=(40, 5)).astype(np.float32)
+    first = _rollout(env, 11, actions)
+    assert len(first) > 5
+    assert _rollout(env, 11, actions) == first
+    other = GetUpResidualEnv(SMALL)
+    try:
+        assert _rollout(other, 11, actions) == first  # a fresh env builds the same bank
+    finally:
+        other.close()
+
+
+def test_a_restored_fall_continues_exactly():
+    """Save at the end of a fall, run get_up on; restore, run again: the same numbers."""
+    rng = np.random.default_rng(5)
+    session = Session(SessionConfig(seed=5, beam_noise=False))
+    try:
+        driver = join_at_random_spot(session, 2, rng)
+        assert knock_over(driver, "back", rng)
+        driver.perceive()
+        snapshot, world = session.save_state(), copy.deepcopy(driver.world)
+
+        def continue_from_snapshot() -> list[tuple[float, ...]]:
+            session.restore_state(snapshot)
+            agent = LocalAgent(session, driver.agent, 2, "Fallers")
+            agent.world = copy.deepcopy(world)
+            agent.behavior = Behavior(agent.world, 2)
+            path = []
+            for _ in range(60):
+                agent.run("get_up")
+                path.append(tuple(agent.robot.torso_position()))
+            return path
+
+        original = []
+        for _ in range(60):  # the original session, never restored
+            driver.run("get_up")
+            original.append(tuple(driver.robot.torso_position()))
+        assert continue_from_snapshot() == original
+        assert continue_from_snapshot() == original
+        assert original[0] != original[-1]  # it did move
+    finally:
+        session.close()
+
+
+def test_zero_residual_is_the_keyframes(env):
+    """An episode of zero actions is the plain skill (no residual) from the same fall."""
+    env.reset(options={"robot_type": 1, "fall": 0})
+    path = []
+    for _ in range(60):
+        env.step(np.zeros(5, dtype=np.float32))
+        episode = env._episode
+        if episode is None:
+            break
+        path.append(tuple(episode.agent.robot.torso_position()))
+    agent, skill = restore_fall(env.bank(1), 0)
+    assert skill.residual is None
+    plain = []
+    while not skill.residual_active:  # the cycles the environment runs inside reset
+        agent.run("get_up")
+    for _ in range(len(path)):
+        agent.run("get_up")
+        plain.append(tuple(agent.robot.torso_position()))
+    assert len(path) > 20 and plain == path
+
+
+def test_a_residual_changes_the_motion(env):
+    def end_height(action: float) -> float:
+        env.reset(options={"robot_type": 1, "fall": 0})
+        for _ in range(30):
+            env.step(np.full(5, action, dtype=np.float32))
+        return float(env._episode.agent.robot.torso_position()[2])
+
+    assert end_height(0.0) != end_height(1.0)
+
+
+def test_config_errors_name_the_key():
+    with pytest.raises(EnvConfigError, match=r"unknown keys \['robot_type'\]"):
+        GetUpEnvConfig.from_mapping({"robot_type": [1]})
+    with pytest.raises(EnvConfigError, match="falls_per_type must be an integer"):
+        GetUpEnvConfig.from_mapping({"falls_per_type": 2.5})
+    with pytest.raises(EnvConfigError, match="type_weights must give one weight"):
+        GetUpEnvConfig.from_mapping({"robot_types": [0, 1], "type_weights": [1.0]})
+    with pytest.raises(EnvConfigError, match="directions must be taken from"):
+        GetUpEnvConfig.from_mapping({"directions": ["up"]})
