@@ -30,6 +30,11 @@ MATCH_EXAMPLES = """examples:
   naosoccer match --duration 600 --monitor-port 3200   a full game RoboViz can watch
 """
 
+TRAIN_EXAMPLES = """examples:
+  nice -n 5 naosoccer train --config config/train/get_up.yaml --out runs/get_up_1
+  naosoccer train --config config/train/get_up.yaml --out runs/short --max-minutes 10
+"""
+
 DEMO_EXAMPLES = """examples:
   naosoccer demo                        embedded server + a scripted client for 5 s
   naosoccer demo --cycles 1000          a longer run
@@ -131,6 +136,22 @@ def _build_parser() -> argparse.ArgumentParser:
     render.add_argument("--out", default="match.gif", help="output GIF")
     render.set_defaults(run=_run_render)
 
+    train = commands.add_parser(
+        "train",
+        help="train a policy with PPO from a YAML config and export it for numpy",
+        description="Train with stable-baselines3 PPO (learning/train.py): the config names the "
+        "environment and PPO's settings; the run directory gets the config, the git commit, "
+        "checkpoints, the model and policy.npz (the actor a behaviour runs without torch).",
+        epilog=TRAIN_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    train.add_argument("--config", required=True, help="training config (YAML)")
+    train.add_argument("--out", required=True, help="run directory (created)")
+    train.add_argument("--max-minutes", type=float, help="stop (and export) after this long")
+    train.add_argument("--total-timesteps", type=int, help="override train.total_timesteps")
+    train.add_argument("--seed", type=int, help="override train.seed")
+    train.set_defaults(run=_run_train)
+
     demo = commands.add_parser(
         "demo",
         help="embedded server plus a short scripted client (the README's main job for now)",
@@ -143,6 +164,21 @@ def _build_parser() -> argparse.ArgumentParser:
     demo.add_argument("--seed", type=int, default=0)
     demo.set_defaults(run=_run_demo)
     return parser
+
+
+def _run_train(args: argparse.Namespace) -> int:
+    from learning.train import main as train_main  # torch: only when training
+
+    argv = ["--config", args.config, "--out", args.out]
+    for flag, value in (
+        ("--max-minutes", args.max_minutes),
+        ("--total-timesteps", args.total_timesteps),
+        ("--seed", args.seed),
+    ):
+        if value is not None:
+            argv += [flag, str(value)]
+    train_main(argv)
+    return 0
 
 
 def _add_server_options(parser: argparse.ArgumentParser) -> None:

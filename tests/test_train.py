@@ -11,9 +11,10 @@ import yaml
 from stable_baselines3 import PPO
 from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
 
+from agent.cli import main as cli_main
 from behaviors.get_up import RESIDUAL_ACTIONS, RESIDUAL_OBS_NAMES, PolicyResidual
 from behaviors.policy import MlpPolicy
-from learning.train import TrainConfigError, load_config, parse_config, train
+from learning.train import TrainConfigError, load_config, parse_config
 
 TINY = {
     "env_id": "naosoccer/GetUpResidual-v0",
@@ -25,9 +26,12 @@ TINY = {
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
+    """A tiny run through the command line (``naosoccer train``)."""
     out = tmp_path_factory.mktemp("run")
-    path = train(parse_config(TINY), TINY, out)
-    return out, path
+    config = out / "tiny.yaml"
+    config.write_text(yaml.safe_dump(TINY))
+    assert cli_main(["train", "--config", str(config), "--out", str(out)]) == 0
+    return out, out / "policy.npz"
 
 
 def test_tiny_run_writes_a_loadable_policy(run):
