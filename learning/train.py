@@ -3,7 +3,7 @@
 Run::
 
     nice -n 5 .venv/bin/python -m learning.train --config config/train/get_up.yaml \\
-        --out runs/get_up_X [--max-minutes 60] [--total-timesteps N]
+        --out runs/get_up_X [--max-minutes 60] [--total-timesteps N] [--resume runs/get_up_W]
 
 The config (validated; every error names its key) has three blocks: ``env_id`` and ``env``
 (the gymnasium id and its config mapping), ``ppo`` (PPO's settings) and ``train`` (seed,
@@ -222,12 +222,16 @@ class Checkpoints(BaseCallback):
         return True
 
 
-def make_model(config: TrainConfig) -> tuple[PPO, VecNormalize]:
-    """The vectorised, normalised environment (one env, this process) and its PPO model."""
+def make_model(config: TrainConfig, resume: Path | None = None) -> tuple[PPO, VecNormalize]:
+    """The vectorised, normalised environment (one env, this process) and its PPO model;
+    ``resume`` (a run directory) continues that run's ``model.zip`` and normaliser."""
     run, ppo = config.train, config.ppo
     set_random_seed(run.seed)
     venv = DummyVecEnv([lambda: gym.make(config.env_id, config=config.env)])
     venv.seed(run.seed)
+    if resume is not None:
+        env = VecNormalize.load(str(resume / "vecnormalize.pkl"), venv)
+        return PPO.load(resume / "model.zip", env=env, device="cpu", seed=run.seed), env
     env = VecNormalize(
         venv, norm_obs=run.norm_obs, norm_reward=run.norm_reward, clip_obs=run.clip_obs,
         gamma=ppo.gamma,
@@ -258,7 +262,11 @@ def make_model(config: TrainConfig) -> tuple[PPO, VecNormalize]:
 
 
 def train(
-    config: TrainConfig, raw: Mapping[str, Any], out: Path, max_minutes: float | None = None
+    config: TrainConfig,
+    raw: Mapping[str, Any],
+    out: Path,
+    max_minutes: float | None = None,
+    resume: Path | None = None,
 ) -> Path:
     """Train, checkpoint and export; returns the path of the exported ``policy.npz``."""
     torch.set_num_threads(1)
@@ -266,9 +274,14 @@ def train(
     config_text = yaml.safe_dump(dict(raw), sort_keys=False)
     (out / "config.yaml").write_text(config_text)
     commit = git_commit()
-    meta = {"git_commit": commit, "seed": config.train.seed, "argv": sys.argv}
+    meta = {
+        "git_commit": commit,
+        "seed": config.train.seed,
+        "argv": sys.argv,
+        "resumed_from": None if resume is None else str(resume),
+    }
     (out / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
-    model, env = make_model(config)
+    model, env = make_model(config, resume)
     progress = ProgressLog(
         config.train.log_every, None if max_minutes is None else max_minutes * 60
     )
@@ -297,6 +310,12 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--max-minutes", type=float, help="stop (and export) after this long")
     parser.add_argument("--total-timesteps", type=int, help="override train.total_timesteps")
     parser.add_argument("--seed", type=int, help="override train.seed")
+    parser.add_argument(
+        "--resume",
+        type=Path,
+        help="continue the model and normaliser of this finished run directory (the config's "
+        "env and train blocks apply; its ppo block is the resumed model's)",
+    )
     args = parser.parse_args(argv)
     try:
         _, raw = load_config(args.config)
@@ -308,7 +327,7 @@ def main(argv: list[str] | None = None) -> None:
         config = parse_config(raw, str(args.config))
     except TrainConfigError as error:
         parser.error(str(error))
-    path = train(config, raw, args.out, args.max_minutes)
+    path = train(config, raw, args.out, args.max_minutes, args.resume)
     print(f"exported {path}")
 
 
