@@ -285,7 +285,7 @@ class BasicKickSkill(Skill):
             self.phase = "kick"  # from here on the kick plays to its end
         if self.phase == "kick":
             assert self.foot is not None
-            return context.manager.execute_sub_behavior("kick", self.foot, self._strength)
+            return context.manager.execute_sub_behavior("kick", self.foot, self._strength, True)
         world = context.world
         if world.pose is None or world.ball.position is None:
             context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0)
@@ -296,7 +296,7 @@ class BasicKickSkill(Skill):
             and world.distance_to(world.ball.position) > CHOOSE_FOOT_DISTANCE_M
         ):
             self.foot = self._choose_foot(context, (target_x, target_y))
-        motion = kick_motion(world.robot.robot_type, self.motions, self.foot)
+        motion = kick_motion(world.robot.robot_type, self.motions, self.foot, aligned=True)
         alignment = self._alignment(context, motion, (target_x, target_y))
         if self.phase in ("approach", "back_off"):
             self._approach(context, motion, (target_x, target_y))
@@ -384,7 +384,9 @@ class BasicKickSkill(Skill):
             foot: kick_spot(
                 ball,
                 target,
-                expected_ball_ego(robot_type, foot, kick_motion(robot_type, self.motions, foot)),
+                expected_ball_ego(
+                    robot_type, foot, kick_motion(robot_type, self.motions, foot, aligned=True)
+                ),
             )
             for foot in FEET
         }

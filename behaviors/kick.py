@@ -45,6 +45,9 @@ KICK_LEFT = "kick_left"
 #: The name of an optional motion for the right foot, written for the left foot like
 #: :data:`KICK_LEFT` and played mirrored (see :func:`kick_motion`).
 KICK_RIGHT = "kick_right"
+#: Suffix of a motion that ``basic_kick`` plays after its approach and alignment shuffle
+#: (``kick_right_aligned``) in place of the plain one (see :func:`kick_motion`).
+ALIGNED_SUFFIX = "_aligned"
 FEET = ("left", "right")
 #: Balance on one leg: degrees of support-ankle roll per degree of torso roll away from the
 #: roll measured when the weight has just moved onto the support leg. Why: standing on one foot
@@ -213,17 +216,27 @@ def default_kicks() -> dict[str, KickMotion]:
 
 
 def kick_motion(
-    robot_type: int, kicks: Mapping[str, KickMotion] | None = None, foot: str = "left"
+    robot_type: int,
+    kicks: Mapping[str, KickMotion] | None = None,
+    foot: str = "left",
+    aligned: bool = False,
 ) -> KickMotion:
     """The motion that ``foot`` kicks with: the robot type's own if there is one, else the
     common one. The right foot plays :data:`KICK_RIGHT` where the file has one, else
     :data:`KICK_LEFT`; either way it is written for the left foot and played mirrored.
+    ``aligned`` (``basic_kick``, after its walk and alignment shuffle) prefers the name with
+    :data:`ALIGNED_SUFFIX` (``kick_right_aligned``) where the file has one.
 
     Why a right kick of its own: the simulator is not mirror-symmetric in the last detail (the
     solver visits the joints in order), and the mirrored left kick fell before contact in 5 of
-    12 right kicks after an approach, against 0 of 6 left ones (``benchmarks/kick.py``)."""
+    12 right kicks after an approach, against 0 of 6 left ones (``benchmarks/kick.py``).
+    Why one for after the alignment: the same right kick leans 2-4 deg further over its
+    support foot after a shuffle than from a stand (torso roll 8-10 deg against 6) and falls
+    over it, while a smaller weight shift that suits it falls after contact from a stand."""
     kicks = default_kicks() if kicks is None else kicks
-    names = (KICK_RIGHT, KICK_LEFT) if foot == "right" else (KICK_LEFT,)
+    names: tuple[str, ...] = (KICK_RIGHT, KICK_LEFT) if foot == "right" else (KICK_LEFT,)
+    if aligned:
+        names = tuple(itertools.chain.from_iterable((n + ALIGNED_SUFFIX, n) for n in names))
     for name in names:
         motion = kicks.get(f"{name}_type{robot_type}") or kicks.get(name)
         if motion is not None:
@@ -232,7 +245,8 @@ def kick_motion(
 
 
 class KickSkill(Skill):
-    """``execute("kick", foot, strength)``: kick with ``"left"``/``"right"`` at 0..1.
+    """``execute("kick", foot, strength, aligned=False)``: kick with ``"left"``/``"right"`` at
+    0..1; ``aligned``: the motion for after ``basic_kick``'s alignment (:func:`kick_motion`).
 
     Finished once the motion has brought the robot back into the stand pose. Asking for the
     other foot or another strength while a kick plays does not interrupt it: a half-played
@@ -255,16 +269,18 @@ class KickSkill(Skill):
         self._done = False
         self._balance = None
 
-    def validate(self, foot: str, strength: float = 1.0) -> None:
+    def validate(self, foot: str, strength: float = 1.0, aligned: bool = False) -> None:
         if foot not in FEET:
             raise ValueError(f"foot must be one of {', '.join(FEET)}, got {foot!r}")
         if not 0.0 <= strength <= 1.0:
             raise ValueError(f"strength must be in [0, 1], got {strength!r}")
 
-    def step(self, context: SkillContext, foot: str, strength: float = 1.0) -> bool:
+    def step(
+        self, context: SkillContext, foot: str, strength: float = 1.0, aligned: bool = False
+    ) -> bool:
         robot = context.world.robot
         if self._player is None or self._done:
-            motion = kick_motion(robot.robot_type, self.motions, foot)
+            motion = kick_motion(robot.robot_type, self.motions, foot, aligned)
             sequence = motion.sequence(strength, mirror=foot == "right")
             self._player = KeyframePlayer(sequence, robot.robot_type)
             self._balance = _OneLegBalance(sequence, foot == "right")

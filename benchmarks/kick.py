@@ -478,7 +478,7 @@ def run_basic_trial(
         while not finished and cycles < BASIC_KICK_TIMEOUT_CYCLES:
             before = session.ball.position()
             if placement is None and skill.phase == "kick" and skill.foot is not None:
-                motion = kick_motion(robot_type, settings.motions, skill.foot)
+                motion = kick_motion(robot_type, settings.motions, skill.foot, aligned=True)
                 placement = ball_placement_error(driver, skill.foot, motion)
             phase = skill.phase
             finished = driver.run("basic_kick", tx, ty, asked)

@@ -27,6 +27,7 @@ from behaviors.basic_kick import (
 )
 from behaviors.joint_control import JointCommands
 from behaviors.kick import (
+    ALIGNED_SUFFIX,
     KICK_LEFT,
     KICK_RIGHT,
     KickMotion,
@@ -121,6 +122,25 @@ def test_the_right_foot_plays_its_own_kick_where_the_file_has_one():
     ahead, side = expected_ball_ego(0, "right", right)
     mirror_ahead, mirror_side = expected_ball_ego(0, "left", right)
     assert (ahead, side) == pytest.approx((mirror_ahead, -mirror_side))
+
+
+def test_basic_kick_plays_the_aligned_motion_where_the_file_has_one():
+    """After its alignment shuffle ``basic_kick`` asks for ``aligned`` motions: the packaged
+    right foot then kicks with a smaller weight shift than from a stand, and a foot without an
+    aligned motion falls back to its plain one."""
+    packaged = default_kicks()
+    aligned_right = kick_motion(0, None, "right", aligned=True)
+    assert aligned_right.name == KICK_RIGHT + ALIGNED_SUFFIX
+    assert kick_motion(0, None, "right").name == KICK_LEFT  # stand kicks: the mirrored left
+    assert kick_motion(0, None, "left", aligned=True) is packaged[KICK_LEFT]
+    stand_roll = packaged[KICK_LEFT].frames.frames[0].joints["rlj2"]
+    assert aligned_right.frames.frames[0].joints["rlj2"] < stand_roll
+    # the same ball spot, so the foot choice and the alignment do not change
+    assert expected_ball_ego(0, "right", aligned_right) == expected_ball_ego(
+        0, "right", packaged[KICK_LEFT]
+    )
+    only_left = {KICK_LEFT: packaged[KICK_LEFT]}
+    assert kick_motion(0, only_left, "right", aligned=True) is packaged[KICK_LEFT]
 
 
 def test_distance_table_gives_the_strength_by_linear_interpolation_clipped_at_its_ends():
