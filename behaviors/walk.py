@@ -51,6 +51,8 @@ __all__ = [
 ]
 
 WALK_FILE = Path(__file__).resolve().parent / "data" / "walk.yaml"
+#: what the heading drift may be measured against (``WalkParameters.heading_hold_reference``)
+HEADING_HOLD_REFERENCES = ("command", "step")
 
 
 @dataclass(frozen=True)
@@ -94,6 +96,19 @@ class WalkParameters:
     walk_to_max_speed: float = math.inf
     #: turn correction (deg/s) per degree of heading drift from the commanded turn (gyro)
     heading_hold_gain: float = 0.0
+    #: what the gyro's turn is compared with to measure the drift: "command" (the smoothed
+    #: commanded turn rate: an integral heading hold, which keeps ``walk_velocity`` straight)
+    #: or "step" (the turn the step under way plans, its own correction included: only the
+    #: feet's slip counts, and once the robot turns as planned the drift stops growing; a
+    #: slip gets one steady correction, no integral action, so on its own the walk curves by
+    #: about 3 deg/s) ...
+    heading_hold_reference: str = "command"
+    #: ... and the same while walking to a target (``walk``), where the heading loop on the
+    #: localiser's pose (``GoToGains.heading_gain``) keeps the heading: "step" there, because
+    #: the integral hold fought that loop. In random target walks the falls at 0.7 m/s began
+    #: with a foot spinning (gyro 150-400 deg/s) while the hold's drift swung between -30 and
+    #: 0 deg and the step's turn flipped sign step by step (walk.yaml has the figures)
+    go_to_heading_hold_reference: str = "command"
     #: how much of the planned torso motion really happens (measured)
     odometry_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
     #: arm pose while walking (degrees), right side; the left mirrors it
@@ -103,6 +118,13 @@ class WalkParameters:
     toe_deg: float = 70.0
     #: cycles to blend from the pose the walk found into the walk's stance
     blend_cycles: int = 10
+
+    def __post_init__(self) -> None:
+        for name in ("heading_hold_reference", "go_to_heading_hold_reference"):
+            if getattr(self, name) not in HEADING_HOLD_REFERENCES:
+                raise ValueError(
+                    f"{name} must be one of {HEADING_HOLD_REFERENCES}, got {getattr(self, name)!r}"
+                )
 
 
 def _read_parameters(data: dict[str, Any], source: str) -> WalkParameters:
@@ -210,13 +232,27 @@ class WalkEngine:
         self.velocity = (x, y, w)
 
     def _track_heading(self, context: SkillContext) -> None:
-        """Integrate how far the gyro's turn has drifted from the commanded turn (feet slip
-        and the swing leg twists the body); the step's turn works against the drift."""
+        """Integrate how far the gyro's turn has drifted from the commanded (or the step's
+        planned) turn (feet slip and the swing leg twists the body); the step's turn works
+        against the drift."""
         turn = float(context.world.robot.gyro_deg_s @ context.world.robot.up)
-        drift = self._heading_drift + (turn - math.degrees(self.velocity[2])) * CYCLE_SECONDS
+        drift = self._heading_drift + (turn - self._reference_turn_deg_s()) * CYCLE_SECONDS
         moving = self._stepping and self.velocity != (0.0, 0.0, 0.0)
         # stopping, the drift is forgotten: a correcting turn would keep the robot stepping
         self._heading_drift = max(-30.0, min(30.0, drift)) if moving else 0.0
+
+    def _step_turn_deg_s(self) -> float:
+        """The turn rate (deg/s) the step under way plans (0 standing)."""
+        if not self._stepping:
+            return 0.0
+        duration = self.params.step.step_cycles * CYCLE_SECONDS
+        return math.degrees(self.generator.command.turn) / duration
+
+    def _reference_turn_deg_s(self) -> float:
+        """The turn rate the gyro's turn is held to (``heading_hold_reference``)."""
+        if self.params.heading_hold_reference == "step":
+            return self._step_turn_deg_s()
+        return math.degrees(self.velocity[2])
 
     def _step_command(self) -> StepCommand:
         duration = self.params.step.step_cycles * CYCLE_SECONDS
@@ -366,6 +402,10 @@ class _WalkBase(Skill):
 
     def __init__(self) -> None:
         self._engine: WalkEngine | None = None
+        #: where the walk's parameters come from (a benchmark trying other settings points it
+        #: at its own copy of ``walk.yaml``; read once per file and robot type)
+        self.walk_file: Path = WALK_FILE
+        self._file: Path = WALK_FILE
 
     def reset(self) -> None:
         if self._engine is not None:
@@ -373,9 +413,16 @@ class _WalkBase(Skill):
 
     def engine(self, context: SkillContext) -> WalkEngine:
         robot_type = context.world.robot.robot_type
-        if self._engine is None or self._engine.robot_type != robot_type:
-            self._engine = WalkEngine(robot_type)
+        engine = self._engine
+        if engine is None or engine.robot_type != robot_type or self._file != self.walk_file:
+            params = self.engine_parameters(walk_parameters(robot_type, self.walk_file))
+            self._engine = WalkEngine(robot_type, params)
+            self._file = self.walk_file
         return self._engine
+
+    def engine_parameters(self, params: WalkParameters) -> WalkParameters:
+        """The parameters this skill's engine walks with (the file's, by default)."""
+        return params
 
     @property
     def phase(self) -> tuple[int, bool]:
@@ -440,6 +487,11 @@ class WalkSkill(_WalkBase):
     def reset(self) -> None:
         super().reset()
         self._arrived = False
+
+    def engine_parameters(self, params: WalkParameters) -> WalkParameters:
+        """Walking to a target, the heading hold measures against
+        ``go_to_heading_hold_reference``: the go-to's own heading loop keeps the heading."""
+        return replace(params, heading_hold_reference=params.go_to_heading_hold_reference)
 
     def validate(self, x: float, y: float, heading_deg: float | None = None) -> None:
         values = (x, y) if heading_deg is None else (x, y, heading_deg)

@@ -26,7 +26,9 @@ ground truth (torso position and heading). Per type it prints:
   ``--quick``), with the falls and the trials that never kicked.
 
 Run: ``.venv/bin/python benchmarks/locomotion.py [--quick] [--types 0 1 2 3 4] [--seed 0]
-[--random-seeds 1] [--kick-trials 20] [--skip-velocity] [--skip-dribble] [--skip-kick]``.
+[--random-seeds 1] [--kick-trials 20] [--skip-velocity] [--skip-dribble] [--skip-kick]
+[--set default.catch_spin_deg_s=150 ...]`` (``--set``: the walk figures with settings of
+``behaviors/data/walk.yaml`` changed, on a copy; the dribbles and kicks keep their own files).
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -41,6 +44,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from behaviors.walk import WALK_FILE
+from benchmarks.dribble import with_settings
 from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
 from world.nao_model import ROBOT_TYPES
@@ -65,10 +70,15 @@ class WalkDriver(LocalAgent):
         self.rise_to_stand()
 
 
-def new_driver(robot_type: int, seed: int, beam=(-8.0, 0.0, 0.0)) -> WalkDriver:
-    """A robot of ``robot_type`` beamed to ``beam``, standing, in PlayOn."""
+def new_driver(
+    robot_type: int, seed: int, beam=(-8.0, 0.0, 0.0), walk_file: Path = WALK_FILE
+) -> WalkDriver:
+    """A robot of ``robot_type`` beamed to ``beam``, standing, in PlayOn, walking with the
+    parameters of ``walk_file``."""
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     driver = WalkDriver.join(session, "Walkers", 1, robot_type, beam=beam)
+    for name in ("walk", "walk_velocity"):
+        driver.behavior.skill(name).walk_file = walk_file
     driver.trainer("(playMode PlayOn)")
     driver.rise_to_stand()
     return driver
@@ -81,11 +91,15 @@ class VelocityResult:
 
 
 def measure_velocity(
-    robot_type: int, command: tuple[float, float, float], seconds: float, seed: int = 0
+    robot_type: int,
+    command: tuple[float, float, float],
+    seconds: float,
+    seed: int = 0,
+    walk_file: Path = WALK_FILE,
 ) -> tuple[float, float, float, bool]:
     """Walk with ``walk_velocity(*command)``; (forward m/s, left m/s, turn deg/s, fell) of the
     torso over ``seconds`` after one second of acceleration, in the robot's start frame."""
-    driver = new_driver(robot_type, seed)
+    driver = new_driver(robot_type, seed, walk_file=walk_file)
     try:
         for _ in range(50):
             driver.run("walk_velocity", *command)
@@ -109,10 +123,14 @@ def measure_velocity(
         driver.session.close()
 
 
-def random_targets(robot_type: int, seconds: float, seed: int) -> tuple[int, list[float], int]:
-    """``walk`` to random targets for ``seconds``: (falls, stop errors, targets reached)."""
+def random_targets(
+    robot_type: int, seconds: float, seed: int, walk_file: Path = WALK_FILE
+) -> tuple[int, list[float], int]:
+    """``walk`` to random targets for ``seconds``: (falls, stop errors, targets reached). The
+    targets come from ``seed`` (``--seed`` moves every run's seed, so a second seed set walks
+    to other targets)."""
     rng = np.random.default_rng(seed)
-    driver = new_driver(robot_type, seed, beam=(-6.0, 0.0, 0.0))
+    driver = new_driver(robot_type, seed, beam=(-6.0, 0.0, 0.0), walk_file=walk_file)
     falls = 0
     errors: list[float] = []
     try:
@@ -139,12 +157,14 @@ def _random_target(rng: np.random.Generator) -> tuple[float, float, float | None
     return float(rng.uniform(-10, -2)), float(rng.uniform(-4, 4)), heading
 
 
-def _print_velocities(robot_type: int, seconds: float, seed: int) -> None:
+def _print_velocities(robot_type: int, seconds: float, seed: int, walk_file: Path) -> None:
     """Forward, sideways and turning figures of one type."""
     tag = f"[type{robot_type}]"
-    fwd, _, _, fell_f = measure_velocity(robot_type, (1.0, 0.0, 0.0), seconds, seed)
-    _, side, _, fell_s = measure_velocity(robot_type, (0.0, 0.4, 0.0), seconds, seed)
-    _, _, turn, fell_t = measure_velocity(robot_type, (0.0, 0.0, 120.0), seconds, seed)
+    runs = [
+        measure_velocity(robot_type, command, seconds, seed, walk_file)
+        for command in ((1.0, 0.0, 0.0), (0.0, 0.4, 0.0), (0.0, 0.0, 120.0))
+    ]
+    (fwd, _, _, fell_f), (_, side, _, fell_s), (_, _, turn, fell_t) = runs
     print(f"walk_forward_mps{tag}: {fwd:.3f}{' (fell)' if fell_f else ''}")
     print(f"walk_side_mps{tag}: {side:.3f}{' (fell)' if fell_s else ''}")
     print(f"walk_turn_dps{tag}: {turn:.1f}{' (fell)' if fell_t else ''}")
@@ -164,17 +184,33 @@ def main() -> None:
     parser.add_argument(
         "--kick-trials", type=int, default=None, help="basic-kick trials per type (20; quick: 3)"
     )
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="DOTTED.KEY=VALUE",
+        help="walk figures with a walk.yaml setting changed (a copy; e.g. default.acceleration=1)",
+    )
     args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as folder:
+        walk_file = with_settings(args.set, Path(folder), WALK_FILE) if args.set else WALK_FILE
+        _print_figures(args, walk_file)
+
+
+def _print_figures(args: argparse.Namespace, walk_file: Path) -> None:
+    """Every figure the arguments ask for, type by type (the walk's with ``walk_file``)."""
     measure_s = 2.0 if args.quick else 3.0
     random_s = 10.0 if args.quick else 60.0
     for robot_type in args.types:
         tag = f"[type{robot_type}]"
         if not args.skip_velocity:
-            _print_velocities(robot_type, measure_s, args.seed)
+            _print_velocities(robot_type, measure_s, args.seed, walk_file)
         falls, errors, reached = 0, [], 0
         for k in range(args.random_seeds):
             seed = args.seed + robot_type + 100 * k
-            run_falls, run_errors, run_reached = random_targets(robot_type, random_s, seed)
+            run_falls, run_errors, run_reached = random_targets(
+                robot_type, random_s, seed, walk_file
+            )
             falls, reached = falls + run_falls, reached + run_reached
             errors.extend(run_errors)
         runs = f" ({args.random_seeds} runs)" if args.random_seeds > 1 else ""
