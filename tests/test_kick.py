@@ -126,21 +126,28 @@ def test_the_right_foot_plays_its_own_kick_where_the_file_has_one():
 
 def test_basic_kick_plays_the_aligned_motion_where_the_file_has_one():
     """After its alignment shuffle ``basic_kick`` asks for ``aligned`` motions: the packaged
-    right foot then kicks with a smaller weight shift than from a stand, and a foot without an
-    aligned motion falls back to its plain one."""
+    right foot then kicks with a smaller weight shift than from a stand, the left one with its
+    support hip extending further in the swing, and a foot without an aligned motion falls back
+    to its plain one."""
     packaged = default_kicks()
+    stand = packaged[KICK_LEFT]
+    aligned_left = kick_motion(0, None, "left", aligned=True)
     aligned_right = kick_motion(0, None, "right", aligned=True)
+    assert aligned_left.name == KICK_LEFT + ALIGNED_SUFFIX
     assert aligned_right.name == KICK_RIGHT + ALIGNED_SUFFIX
     assert kick_motion(0, None, "right").name == KICK_LEFT  # stand kicks: the mirrored left
-    assert kick_motion(0, None, "left", aligned=True) is packaged[KICK_LEFT]
-    stand_roll = packaged[KICK_LEFT].frames.frames[0].joints["rlj2"]
-    assert aligned_right.frames.frames[0].joints["rlj2"] < stand_roll
-    # the same ball spot, so the foot choice and the alignment do not change
-    assert expected_ball_ego(0, "right", aligned_right) == expected_ball_ego(
-        0, "right", packaged[KICK_LEFT]
+    assert kick_motion(0, None, "left") is stand
+    swing_end = max(stand.swing_frames)
+    assert (
+        aligned_left.frames.frames[swing_end].joints["rlj3"]
+        < stand.frames.frames[swing_end].joints["rlj3"]
     )
-    only_left = {KICK_LEFT: packaged[KICK_LEFT]}
-    assert kick_motion(0, only_left, "right", aligned=True) is packaged[KICK_LEFT]
+    assert aligned_right.frames.frames[0].joints["rlj2"] < stand.frames.frames[0].joints["rlj2"]
+    # the same ball spot, so the foot choice and the alignment do not change
+    for foot, aligned in (("left", aligned_left), ("right", aligned_right)):
+        assert expected_ball_ego(0, foot, aligned) == expected_ball_ego(0, foot, stand)
+    only_left = {KICK_LEFT: stand}
+    assert kick_motion(0, only_left, "right", aligned=True) is stand
 
 
 def test_distance_table_gives_the_strength_by_linear_interpolation_clipped_at_its_ends():
