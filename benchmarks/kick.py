@@ -140,6 +140,14 @@ def shuffle_in_place(driver: LocalAgent, forward: float, left: float) -> None:
         driver.run("pose", "stand")
 
 
+def place_ball(driver: LocalAgent, x: float, y: float, play_on: bool = True) -> None:
+    """Trainer placement of the ball at rest on the ground at world (``x``, ``y``), with
+    PlayOn unless ``play_on`` is False: the one placement of the kick trials and the skill
+    clips (``learning/skill_clips.py``)."""
+    mode = "(playMode PlayOn)" if play_on else ""
+    driver.trainer(f"{mode}(ball (pos {x:.4f} {y:.4f} {BALL_RADIUS}) (vel 0 0 0))")
+
+
 def place_ball_in_front_of(
     driver: LocalAgent, foot: str, gap: float, side: float = 0.0
 ) -> tuple[float, float]:
@@ -151,12 +159,10 @@ def place_ball_in_front_of(
     centre, forward = transform[:3, 3], transform[:3, 1]  # native y = the foot's forward axis
     outwards = transform[:3, 0] * (-1.0 if foot == "left" else 1.0)  # native x = right
     reach = robot.spec.body(name).size[1] / 2 + BALL_RADIUS + gap
-    x = centre[0] + forward[0] * reach + outwards[0] * side
-    y = centre[1] + forward[1] * reach + outwards[1] * side
-    driver.session.trainer(
-        f"(playMode PlayOn)(ball (pos {x:.4f} {y:.4f} {BALL_RADIUS}) (vel 0 0 0))"
-    )
-    return float(x), float(y)
+    x = float(centre[0] + forward[0] * reach + outwards[0] * side)
+    y = float(centre[1] + forward[1] * reach + outwards[1] * side)
+    place_ball(driver, x, y)
+    return x, y
 
 
 def ball_placement_error(driver: LocalAgent, foot: str, motion: KickMotion) -> tuple[float, float]:
@@ -344,7 +350,6 @@ class BasicKickResult:
     distance_m: float
     #: direction of travel against the direction to the target (deg, + = left of it)
     direction_error_deg: float
-    fell: bool
     #: seconds from the first ``basic_kick`` cycle to the kick motion setting the ball moving
     #: (bumps while walking do not count); None: never kicked
     time_to_kick_s: float | None
@@ -356,6 +361,11 @@ class BasicKickResult:
     placement_error_m: tuple[float, float] | None = None
     #: where the robot first fell (:func:`fall_stage`); None when it did not
     fall_stage: str | None = None
+
+    @property
+    def fell(self) -> bool:
+        """Whether the robot fell at any time in the trial (it then has a fall stage)."""
+        return self.fall_stage is not None
 
 
 #: Where a basic kick's fall happened: before the kick motion (walking, aligning, waiting), in
@@ -465,7 +475,7 @@ def run_basic_trial(
         angle = math.radians(START[2] + ball_bearing_deg)
         bx = START[0] + ball_distance * math.cos(angle)
         by = START[1] + ball_distance * math.sin(angle)
-        driver.trainer(f"(playMode PlayOn)(ball (pos {bx:.4f} {by:.4f} {BALL_RADIUS}) (vel 0 0 0))")
+        place_ball(driver, bx, by)
         driver.run("pose", "stand")
         reach = 10.0 if isinstance(asked, str) else asked
         direction = math.radians(target_direction_deg)
@@ -501,7 +511,6 @@ def run_basic_trial(
             asked,
             math.hypot(x - start[0], y - start[1]),
             (travel - target_direction_deg + 180.0) % 360.0 - 180.0,
-            stage is not None,
             None if contact is None else contact * CYCLE_SECONDS,
             skill.foot,
             placement,

@@ -20,11 +20,11 @@ from pathlib import Path
 
 import numpy as np
 
+from benchmarks.kick import place_ball
 from learning.falls import knock_over
 from learning.local_agent import LocalAgent
 from sim.render import Renderer, save_gif
 from sim.session import Session, SessionConfig
-from world.field_geometry import BALL_RADIUS
 
 #: One clip's behaviour: runs the session one cycle per ``next()``.
 Scenario = Callable[[LocalAgent], Iterator[None]]
@@ -44,12 +44,13 @@ class Clip:
 
 
 def _place_ball(agent: LocalAgent, forward: float, left: float = 0.0) -> None:
-    """Trainer placement of the ball at rest ``forward``/``left`` m from the torso."""
+    """Trainer placement of the ball at rest ``forward``/``left`` m from the torso (through
+    the kick trials' :func:`~benchmarks.kick.place_ball`, play mode left as it is)."""
     x, y, _ = agent.robot.torso_position()
     yaw = math.radians(agent.robot.torso_yaw_deg())
     bx = x + forward * math.cos(yaw) - left * math.sin(yaw)
     by = y + forward * math.sin(yaw) + left * math.cos(yaw)
-    agent.trainer(f"(ball (pos {bx:.3f} {by:.3f} {BALL_RADIUS:.3f}) (vel 0 0 0))")
+    place_ball(agent, bx, by, play_on=False)
 
 
 def _repeat(agent: LocalAgent, name: str, *args: object) -> Iterator[None]:

@@ -340,10 +340,10 @@ def test_impact_measurement_sees_the_foot_push_the_ball_faster_than_it_moved_bef
 def test_basic_kick_figures_are_medians_over_the_kicks_and_counts_of_the_rest(monkeypatch):
     outcomes = iter(
         [
-            BasicKickResult(3.0, 2.0, -4.0, False, 8.0, "left"),
-            BasicKickResult(3.0, 3.0, 1.0, True, 10.0, "right", fall_stage="after_contact"),
-            BasicKickResult(3.0, 0.0, 0.0, False, None, None),
-            BasicKickResult(3.0, 4.0, 2.0, False, 9.0, "left"),
+            BasicKickResult(3.0, 2.0, -4.0, 8.0, "left"),
+            BasicKickResult(3.0, 3.0, 1.0, 10.0, "right", fall_stage="after_contact"),
+            BasicKickResult(3.0, 0.0, 0.0, None, None),
+            BasicKickResult(3.0, 4.0, 2.0, 9.0, "left"),
         ]
     )
     monkeypatch.setattr(kick_benchmark, "run_basic_trial", lambda *a, **k: next(outcomes))
