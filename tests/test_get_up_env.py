@@ -12,7 +12,7 @@ from gymnasium.utils.env_checker import check_env
 
 from behaviors.manager import Behavior
 from learning.envs import GET_UP_RESIDUAL_ID, GetUpEnvConfig, GetUpResidualEnv
-from learning.envs.get_up import EnvConfigError, restore_fall
+from learning.envs.get_up import EnvConfigError, measure_speed, restore_fall
 from learning.falls import join_at_random_spot, knock_over
 from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
@@ -134,3 +134,8 @@ def test_config_errors_name_the_key():
         GetUpEnvConfig.from_mapping({"robot_types": [0, 1], "type_weights": [1.0]})
     with pytest.raises(EnvConfigError, match="directions must be taken from"):
         GetUpEnvConfig.from_mapping({"directions": ["up"]})
+
+
+def test_speed_measurement_runs_episodes():
+    result = measure_speed(GetUpEnvConfig(robot_types=(0,), falls_per_type=1), seconds=0.5)
+    assert result["steps_per_s"] > 0 and 0.0 <= result["success"] <= 1.0
