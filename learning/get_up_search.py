@@ -79,6 +79,18 @@ class FallBank:
     team_name: str
     states: list[LyingState]
 
+    def restore(self, index: int) -> tuple[LocalAgent, GetUpSkill]:
+        """Put the session back to lying state ``index``: a fresh agent (the world model as it
+        was then, new skills) and its ``get_up`` skill (with the packaged residual, if any)."""
+        state = self.states[index]
+        self.session.restore_state(state.snapshot)
+        agent = LocalAgent(self.session, self.agent, self.robot_type, self.team_name)
+        agent.world = copy.deepcopy(state.world)
+        agent.behavior = Behavior(agent.world, self.robot_type)
+        skill = agent.behavior.skill("get_up")
+        assert isinstance(skill, GetUpSkill)
+        return agent, skill
+
     def trial(
         self, index: int, sequences: Mapping[str, KeyframeSequence], attempts: int = 1
     ) -> float:
@@ -87,13 +99,7 @@ class FallBank:
         The trial ends once the skill starts attempt ``attempts + 1``: one attempt for a
         get-up (a retry cannot fit into the time), two for a side roll and what follows it.
         """
-        state = self.states[index]
-        self.session.restore_state(state.snapshot)
-        agent = LocalAgent(self.session, self.agent, self.robot_type, self.team_name)
-        agent.world = copy.deepcopy(state.world)
-        agent.behavior = Behavior(agent.world, self.robot_type)
-        skill = agent.behavior.skill("get_up")
-        assert isinstance(skill, GetUpSkill)
+        agent, skill = self.restore(index)
         skill.sequences = sequences
         peak = 0.0
         finished = False

@@ -12,7 +12,7 @@ from gymnasium.utils.env_checker import check_env
 
 from behaviors.manager import Behavior
 from learning.envs import GET_UP_RESIDUAL_ID, GetUpEnvConfig, GetUpResidualEnv
-from learning.envs.get_up import EnvConfigError, measure_speed, restore_fall
+from learning.envs.get_up import EnvConfigError, measure_speed
 from learning.falls import join_at_random_spot, knock_over
 from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
@@ -104,7 +104,7 @@ def test_zero_residual_is_the_keyframes(env):
         if episode is None:
             break
         path.append(tuple(episode.agent.robot.torso_position()))
-    agent, skill = restore_fall(env.bank(1), 0)
+    agent, skill = env.bank(1).restore(0)
     assert skill.residual is None
     plain = []
     while not skill.residual_active:  # the cycles the environment runs inside reset

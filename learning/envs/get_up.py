@@ -27,7 +27,6 @@ and for an attempt that falls back, and a small action penalty.
 
 from __future__ import annotations
 
-import copy
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
@@ -44,7 +43,6 @@ from behaviors.get_up import (
     GetUpSkill,
 )
 from behaviors.joint_control import CYCLE_SECONDS
-from behaviors.manager import Behavior
 from learning.falls import FALL_DIRECTIONS
 from learning.get_up_search import FallBank, closeness, make_bank
 from learning.local_agent import LocalAgent
@@ -54,19 +52,6 @@ from world.nao_model import ROBOT_TYPES
 HOLD_CYCLES = 25
 ACTION_NAMES = tuple(RESIDUAL_ACTIONS)
 ACTION_SCALE = np.array([RESIDUAL_MAX_DEG[name] for name in ACTION_NAMES])
-
-
-def restore_fall(bank: FallBank, index: int) -> tuple[LocalAgent, GetUpSkill]:
-    """Put the bank's session back to fall ``index``: a fresh agent (the world model as it
-    was then, new skills) and its ``get_up`` skill, with the packaged residual if any."""
-    state = bank.states[index]
-    bank.session.restore_state(state.snapshot)
-    agent = LocalAgent(bank.session, bank.agent, bank.robot_type, bank.team_name)
-    agent.world = copy.deepcopy(state.world)
-    agent.behavior = Behavior(agent.world, bank.robot_type)
-    skill = agent.behavior.skill("get_up")
-    assert isinstance(skill, GetUpSkill)
-    return agent, skill
 
 
 class EnvConfigError(ValueError):
@@ -239,7 +224,7 @@ class GetUpResidualEnv(gym.Env):
         fall = options.get("fall")
         if fall is None:
             fall = int(self.np_random.integers(len(bank.states)))
-        agent, skill = restore_fall(bank, fall)
+        agent, skill = bank.restore(fall)
         skill.residual = self._held
         # the benchmark perceives once more after the fall (the same bytes): so do we
         agent.perceive()
