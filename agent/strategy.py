@@ -146,6 +146,13 @@ class AttackConfig:
     #: ... except within this distance of the goal centre (a keeper or defender blocking
     #: the way in), where a stall is answered with ``basic_kick`` at the goal instead
     stall_shot_m: float = 4.0
+    #: ... and only with the ball within this of the goal's centre line (|y|, 0: any y); a
+    #: stall wider out is escaped for ``escape_s`` by dribbling towards the point
+    #: ``stall_centre_back_m`` in front of the goal centre. Why: a stall shot from beside the
+    #: goal (benchmarks/attack.py --trials 2 --trace 4: ball at x 13, y 1.6-2.4) has no angle
+    #: and ``basic_kick`` lined up there fell three times in four
+    stall_shot_max_y_m: float = 0.0
+    stall_centre_back_m: float = 2.0
     #: a stall shot that has not finished after this long (s) is given up for an escape: a
     #: keeper at the ball keeps ``basic_kick`` lining up for ever (0: never give up)
     shot_max_s: float = 8.0
@@ -774,7 +781,9 @@ class Strategy:
         self, world, ball: tuple[float, float], aim: tuple[float, float]
     ) -> tuple[float, float]:
         """``aim``, or while escaping a stall a point 5 m from the ball ``escape_deg`` off the
-        line to ``aim``. A stall counts only while the player is at the ball."""
+        line to ``aim`` (from beside the goal: the point in front of it, see
+        :attr:`AttackConfig.stall_shot_max_y_m`). A stall counts only while the player is at
+        the ball."""
         attack = self.config.attack
         now = world.time or 0.0
         at_ball = math.dist((world.pose.x, world.pose.y), ball) < attack.dribble_keep_m
@@ -787,7 +796,11 @@ class Strategy:
             and not self._shooting
             and self._stall.stalled(now, ball, attack.stall_s, attack.stall_m)
         ):
-            if math.dist(ball, (HALF_LENGTH, 0.0)) < attack.stall_shot_m:
+            near_goal = math.dist(ball, (HALF_LENGTH, 0.0)) < attack.stall_shot_m
+            wide = 0.0 < attack.stall_shot_max_y_m < abs(ball[1])
+            if near_goal and wide:
+                self._escape = (now + attack.escape_s, 0.0)  # side 0: to the goal's front
+            elif near_goal:
                 self._shooting, self._shot_since = True, now
             else:
                 self._escape = (now + attack.escape_s, self._escape_side(world, ball))
@@ -797,6 +810,8 @@ class Strategy:
         if now >= until:
             self._escape = None
             return aim
+        if side == 0.0:
+            return (HALF_LENGTH - attack.stall_centre_back_m, 0.0)
         heading = math.atan2(aim[1] - ball[1], aim[0] - ball[0])
         heading += side * math.radians(attack.escape_deg)
         return (ball[0] + 5.0 * math.cos(heading), ball[1] + 5.0 * math.sin(heading))

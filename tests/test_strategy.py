@@ -364,6 +364,30 @@ def test_a_stall_near_the_goal_is_answered_with_a_shot_that_runs_to_its_end():
     assert behavior.calls[-1][0] == "basic_kick"
 
 
+def test_a_stall_beside_the_goal_is_escaped_to_its_front_if_told_so():
+    def calls_after_a_stall_beside_the_goal(attack: AttackConfig) -> list[tuple]:
+        strategy, behavior = (
+            Strategy(StrategyConfig(attack=attack)),
+            RecordingBehavior("walk", "dribble", "basic_kick"),
+        )
+        # 2 m before the end line, outside the post (|y| 1.05): no angle for a shot
+        scene = world((13.0, 1.8), (12.7, 1.8, 0.0))
+        for k in range(260):  # 5.2 s at a ball that does not move: a stall after 4 s
+            scene.time = 10.0 + 0.02 * k
+            strategy.decide(scene, behavior)
+        return behavior.calls
+
+    assert calls_after_a_stall_beside_the_goal(AttackConfig())[-1][0] == "basic_kick"
+    calls = calls_after_a_stall_beside_the_goal(AttackConfig(stall_shot_max_y_m=1.0))
+    assert all(call[0] != "basic_kick" for call in calls)
+    name, *args = calls[-1]
+    heading = args[1] if name == "dribble" else args[2]
+    assert heading == pytest.approx(-90.0)  # towards (13, 0), in front of the goal centre
+    # inside the posts' line the stall shot is still taken
+    inside = AttackConfig(stall_shot_max_y_m=2.0)
+    assert calls_after_a_stall_beside_the_goal(inside)[-1][0] == "basic_kick"
+
+
 def test_the_second_closest_field_player_waits_ahead_of_the_ball_beside_the_line():
     behavior = RecordingBehavior("walk", "dribble")
     strategy = Strategy(StrategyConfig(support=SupportConfig(ahead_m=2.0, side_m=1.5)))
