@@ -40,7 +40,6 @@ import numpy as np
 
 from behaviors.joint_control import CYCLE_SECONDS, JointCommands
 from behaviors.keyframes import (
-    Keyframe,
     KeyframePlayer,
     KeyframeSequence,
     default_sequences,
@@ -321,16 +320,6 @@ def residual_offsets(residual_deg: np.ndarray) -> dict[str, float]:
     return out
 
 
-def _frame_at(sequence: KeyframeSequence, seconds: float) -> Keyframe:
-    """The frame whose targets a player sends ``seconds`` into the sequence."""
-    end = 0.0
-    for frame in sequence.frames:
-        end += frame.total
-        if seconds <= end + 1e-9:
-            return frame
-    return sequence.frames[-1]
-
-
 @dataclass
 class _Attempt:
     """What the skill is doing now: which sequence it plays, and since when it waits."""
@@ -546,5 +535,4 @@ def _shift_gain_targets(
     targets = commands.targets()
     shifted = {name: targets[name] + off for name, off in offsets.items() if name in targets}
     if shifted:
-        frame = _frame_at(player.sequence, player.elapsed)
-        commands.set_targets(shifted, frame.gain)
+        commands.set_targets(shifted, player.frame_at(player.elapsed).gain)

@@ -294,15 +294,24 @@ class KeyframePlayer:
             current.update(frame.joints)
         return starts
 
+    def _frame_index(self, seconds: float) -> int:
+        """Index of the frame whose targets the player sends ``seconds`` into the sequence."""
+        return next(
+            (i for i, end in enumerate(self._frame_ends) if seconds <= end + 1e-9),
+            len(self._frame_ends) - 1,
+        )
+
+    def frame_at(self, seconds: float) -> Keyframe:
+        """The frame whose targets the player sends ``seconds`` into the sequence (after
+        :meth:`step`, ``frame_at(elapsed)`` is the frame that cycle played)."""
+        return self.sequence.frames[self._frame_index(seconds)]
+
     def targets(self, joints_deg: Mapping[str, float]) -> tuple[dict[str, float], Keyframe]:
         """The targets for the current cycle and the frame they belong to."""
         if self._frame_starts is None:
             self._frame_starts = self._start_targets(joints_deg)
         time = min(self._cycle + 1, self._total_cycles) * CYCLE_SECONDS
-        index = next(
-            (i for i, end in enumerate(self._frame_ends) if time <= end + 1e-9),
-            len(self._frame_ends) - 1,
-        )
+        index = self._frame_index(time)
         frame = self.sequence.frames[index]
         frame_start_time = self._frame_ends[index] - frame.total
         duration = frame.duration
