@@ -41,6 +41,7 @@ from torch import nn
 
 import learning.envs  # noqa: F401  (registers the environments)
 from learning.export import export_policy, git_commit
+from world.yaml_config import ConfigError, config_from_mapping
 
 
 class TrainConfigError(ValueError):
@@ -66,6 +67,11 @@ class PpoConfig:
     #: initial log standard deviation of the actions (-1: std 0.37 of the [-1, 1] range)
     log_std_init: float = -1.0
 
+    def __post_init__(self) -> None:
+        _check_non_negative_ints(self)
+        if not all(width > 0 for width in self.net_arch):
+            raise TrainConfigError(f"net_arch must list positive integers, got {self.net_arch}")
+
 
 @dataclass(frozen=True)
 class RunConfig:
@@ -79,6 +85,9 @@ class RunConfig:
     norm_reward: bool = True
     clip_obs: float = 10.0
 
+    def __post_init__(self) -> None:
+        _check_non_negative_ints(self)
+
 
 @dataclass(frozen=True)
 class TrainConfig:
@@ -91,41 +100,24 @@ class TrainConfig:
 _ACTIVATIONS = {"tanh": nn.Tanh, "relu": nn.ReLU}
 
 
-def _typed(cls: type, data: Any, where: str) -> Any:
-    """A dataclass from a mapping, each value checked against the field's default type."""
+def _section(cls: type, data: Any, where: str) -> Any:
+    """One block of the config as its dataclass, through the project's YAML validation
+    (:func:`world.yaml_config.config_from_mapping`: unknown keys, types), as a
+    :class:`TrainConfigError` naming the block."""
     if data is None:
         return cls()
-    if not isinstance(data, Mapping):
-        raise TrainConfigError(f"{where} must be a mapping, got {data!r}")
-    known = {f.name: f for f in fields(cls)}
-    unknown = sorted(set(data) - set(known))
-    if unknown:
-        raise TrainConfigError(f"{where}: unknown keys {unknown}; known: {sorted(known)}")
-    defaults = cls()
-    values = {}
-    for key, value in data.items():
-        default = getattr(defaults, key)
-        here = f"{where}.{key}"
-        if isinstance(default, bool):
-            if not isinstance(value, bool):
-                raise TrainConfigError(f"{here} must be true or false, got {value!r}")
-        elif isinstance(default, int):
-            if not isinstance(value, int) or isinstance(value, bool) or value < 0:
-                raise TrainConfigError(f"{here} must be an integer >= 0, got {value!r}")
-        elif isinstance(default, float):
-            if not isinstance(value, int | float) or isinstance(value, bool):
-                raise TrainConfigError(f"{here} must be a number, got {value!r}")
-            value = float(value)
-        elif isinstance(default, tuple):
-            if not isinstance(value, list) or not all(
-                isinstance(v, int) and not isinstance(v, bool) and v > 0 for v in value
-            ):
-                raise TrainConfigError(f"{here} must be a list of positive integers, got {value!r}")
-            value = tuple(value)
-        elif isinstance(default, str) and not isinstance(value, str):
-            raise TrainConfigError(f"{here} must be a string, got {value!r}")
-        values[key] = value
-    return cls(**values)
+    try:
+        return config_from_mapping(cls, data, source=where)
+    except ConfigError as error:
+        raise TrainConfigError(str(error)) from None
+
+
+def _check_non_negative_ints(config: Any) -> None:
+    """Counts, sizes and seeds are integers >= 0 (the types are checked on reading)."""
+    for item in fields(config):
+        value = getattr(config, item.name)
+        if isinstance(value, int) and not isinstance(value, bool) and value < 0:
+            raise TrainConfigError(f"{item.name} must be an integer >= 0, got {value!r}")
 
 
 def parse_config(data: Any, where: str = "config") -> TrainConfig:
@@ -142,12 +134,12 @@ def parse_config(data: Any, where: str = "config") -> TrainConfig:
     env = data.get("env") or {}
     if not isinstance(env, Mapping):
         raise TrainConfigError(f"{where}.env must be a mapping, got {env!r}")
-    ppo = _typed(PpoConfig, data.get("ppo"), f"{where}.ppo")
+    ppo = _section(PpoConfig, data.get("ppo"), f"{where}.ppo")
     if ppo.activation not in _ACTIVATIONS:
         raise TrainConfigError(f"{where}.ppo.activation must be one of {sorted(_ACTIVATIONS)}")
     if ppo.batch_size < 2 or ppo.n_steps < ppo.batch_size:
         raise TrainConfigError(f"{where}.ppo: need 2 <= batch_size <= n_steps")
-    run = _typed(RunConfig, data.get("train"), f"{where}.train")
+    run = _section(RunConfig, data.get("train"), f"{where}.train")
     if run.total_timesteps < 1 or run.log_every < 1:
         raise TrainConfigError(f"{where}.train: total_timesteps and log_every must be >= 1")
     return TrainConfig(env_id, dict(env), ppo, run)

@@ -126,9 +126,11 @@ def test_a_residual_changes_the_motion(env):
 
 
 def test_config_errors_name_the_key():
-    with pytest.raises(EnvConfigError, match=r"unknown keys \['robot_type'\]"):
+    unknown = r"env: unknown key\(s\) robot_type for GetUpEnvConfig"
+    with pytest.raises(EnvConfigError, match=unknown):
         GetUpEnvConfig.from_mapping({"robot_type": [1]})
-    with pytest.raises(EnvConfigError, match="falls_per_type must be an integer"):
+    wrong_type = r"GetUpEnvConfig\.falls_per_type: expected int, got 2\.5"
+    with pytest.raises(EnvConfigError, match=wrong_type):
         GetUpEnvConfig.from_mapping({"falls_per_type": 2.5})
     with pytest.raises(EnvConfigError, match="type_weights must give one weight"):
         GetUpEnvConfig.from_mapping({"robot_types": [0, 1], "type_weights": [1.0]})

@@ -71,9 +71,10 @@ def _box_env(n: int):
 
 
 def test_config_errors_name_the_key(tmp_path):
-    with pytest.raises(TrainConfigError, match=r"config.ppo: unknown keys \['n_step'\]"):
+    unknown = r"config\.ppo: unknown key\(s\) n_step for PpoConfig"
+    with pytest.raises(TrainConfigError, match=unknown):
         parse_config({**TINY, "ppo": {"n_step": 5}})
-    message = r"config\.train\.total_timesteps must be an integer"
+    message = r"config\.train: RunConfig\.total_timesteps: expected int, got 'many'"
     with pytest.raises(TrainConfigError, match=message):
         parse_config({**TINY, "train": {"total_timesteps": "many"}})
     with pytest.raises(TrainConfigError, match="env_id must be one of"):

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 import gymnasium as gym
@@ -47,6 +47,7 @@ from learning.falls import FALL_DIRECTIONS
 from learning.get_up_search import FallBank, closeness, make_bank
 from learning.local_agent import LocalAgent
 from world.nao_model import ROBOT_TYPES
+from world.yaml_config import ConfigError, config_from_mapping
 
 #: Cycles the robot must still stand after the skill reports standing (the benchmark's rule).
 HOLD_CYCLES = 25
@@ -100,47 +101,13 @@ class GetUpEnvConfig:
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any] | None, where: str = "env") -> GetUpEnvConfig:
-        """Build from a YAML mapping; unknown keys and wrong types raise with their name."""
-        data = dict(data or {})
-        known = {f.name: f for f in fields(cls)}
-        unknown = sorted(set(data) - set(known))
-        if unknown:
-            raise EnvConfigError(f"{where}: unknown keys {unknown}; known: {sorted(known)}")
-        values: dict[str, Any] = {}
-        for key, value in data.items():
-            values[key] = _convert(key, value, where)
+        """Build from a YAML mapping through the project's YAML validation
+        (:func:`world.yaml_config.config_from_mapping`): unknown keys, wrong types and the
+        checks above raise an :class:`EnvConfigError` naming the key."""
         try:
-            return cls(**values)
-        except EnvConfigError as error:
-            raise EnvConfigError(f"{where}: {error}") from error
-
-
-_TUPLE_KEYS = {"robot_types": int, "type_weights": float, "directions": str}
-_INT_KEYS = {"falls_per_type", "bank_seed"}
-
-
-def _convert(key: str, value: Any, where: str) -> Any:
-    """One config value checked and converted to the dataclass field's type."""
-    if key in _TUPLE_KEYS:
-        if value is None and key == "type_weights":
-            return None
-        if not isinstance(value, list | tuple):
-            raise EnvConfigError(f"{where}.{key} must be a list, got {value!r}")
-        kind = _TUPLE_KEYS[key]
-        if kind is str and not all(isinstance(v, str) for v in value):
-            raise EnvConfigError(f"{where}.{key} must list names, got {value!r}")
-        if kind is not str and not all(
-            isinstance(v, int | float) and not isinstance(v, bool) for v in value
-        ):
-            raise EnvConfigError(f"{where}.{key} must list numbers, got {value!r}")
-        return tuple(kind(v) for v in value)
-    if key in _INT_KEYS:
-        if not isinstance(value, int) or isinstance(value, bool):
-            raise EnvConfigError(f"{where}.{key} must be an integer, got {value!r}")
-        return value
-    if not isinstance(value, int | float) or isinstance(value, bool):
-        raise EnvConfigError(f"{where}.{key} must be a number, got {value!r}")
-    return float(value)
+            return config_from_mapping(cls, dict(data or {}), source=where)
+        except ConfigError as error:
+            raise EnvConfigError(str(error)) from None
 
 
 @dataclass
