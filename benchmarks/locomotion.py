@@ -27,7 +27,7 @@ ground truth (torso position and heading). Per type it prints:
 
 Run: ``.venv/bin/python benchmarks/locomotion.py [--quick] [--types 0 1 2 3 4] [--seed 0]
 [--random-seeds 1] [--kick-trials 20] [--skip-velocity] [--skip-dribble] [--skip-kick]
-[--set default.catch_spin_deg_s=150 ...]`` (``--set``: the walk figures with settings of
+[--set default.acceleration=1 ...]`` (``--set``: the walk figures with settings of
 ``behaviors/data/walk.yaml`` changed, on a copy; the dribbles and kicks keep their own files).
 """
 
