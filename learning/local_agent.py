@@ -77,6 +77,11 @@ class LocalAgent:
         """Perceive, execute skill ``name`` and queue its effector bytes, without stepping;
         True when the skill has finished."""
         self.perceive()
+        return self.decide(name, *args)
+
+    def decide(self, name: str, *args: object) -> bool:
+        """Execute skill ``name`` on what was last perceived and queue its effector bytes,
+        without perceiving or stepping; True when the skill has finished."""
         self.behavior.begin_cycle()
         finished = self.behavior.execute(name, *args)
         self.queue(self.behavior.effector_speeds())

@@ -266,10 +266,8 @@ class GetUpResidualEnv(gym.Env):
 
     @staticmethod
     def _run_cycle(agent: LocalAgent, name: str, *args: object) -> bool:
-        behavior = agent.behavior
-        behavior.begin_cycle()
-        finished = behavior.execute(name, *args)
-        agent.queue(behavior.effector_speeds())
+        """One cycle that ends perceiving (the next observation is this step's outcome)."""
+        finished = agent.decide(name, *args)
         agent.session.step()
         agent.perceive()
         return finished
