@@ -73,6 +73,7 @@ __all__ = [
     "dribble_velocity",
     "dribble_walk_parameters",
     "recovery_velocity",
+    "still_turning",
 ]
 
 DRIBBLE_FILE = Path(__file__).resolve().parent / "data" / "dribble.yaml"
@@ -92,6 +93,12 @@ class DribbleGait:
     #: where the ball should lie relative to the torso centre
     ball_ahead: float = 0.2
     ball_side: float = 0.0
+    #: the ball counts as on the gait's line while it lies within this much of ``ball_side``
+    #: either way (0: only on it). Why: DFDL's toes push the ball alternately from its sides,
+    #: so it swings between the feet's lines; chasing it back to the middle with sidesteps
+    #: (and slowing down for it) cost most of DFDL's speed, while either toe can push a ball
+    #: that lies between the feet's lines
+    ball_corridor: float = 0.0
     #: the ball is within reach (:func:`ball_within_reach`) while it lies this far ahead ...
     reach_min_ahead: float = 0.08
     reach_max_ahead: float = 0.35
@@ -109,6 +116,12 @@ class DribbleGait:
     ahead_gain: float = 2.0
     #: share of the ball's own forward speed added (a kicked ball runs off: follow it at once)
     follow_gain: float = 0.0
+    #: forward speed limit (m/s) through a sharp turn: from the time the heading error passes
+    #: the placement dead band until it is back within turn_settled_deg (inf: off; the skill
+    #: keeps the state, :attr:`DribbleInputs.turning`). Why: coming out of a sharp turn at
+    #: DFDL's full speed (0.9 m/s) a foot met the ball beside it and the robot fell
+    turning_max_speed: float = math.inf
+    turn_settled_deg: float = 5.0
     #: m/s of sideways speed per metre the ball lies off the line
     side_gain: float = 3.0
     max_side_speed: float = 0.25
@@ -168,6 +181,9 @@ class DribbleInputs:
     heading_error_deg: float
     #: the torso's tilt from upright (deg; the same in the mirror)
     tilt_deg: float = 0.0
+    #: coming out of a sharp turn: the heading error passed the placement dead band and has
+    #: not been within ``turn_settled_deg`` since (:func:`still_turning`; the same in the mirror)
+    turning: bool = False
 
     def mirrored(self) -> DribbleInputs:
         """The same situation seen in the mirror (the sagittal plane): lateral values negate."""
@@ -178,6 +194,7 @@ class DribbleInputs:
             -self.ball_vy,
             -self.heading_error_deg,
             self.tilt_deg,
+            self.turning,
         )
 
 
@@ -187,7 +204,9 @@ def ball_within_reach(inputs: DribbleInputs, gait: DribbleGait) -> bool:
     ``reach_side`` off the gait's line (``ball_side``) sideways. The robot only speeds up
     while this holds."""
     ahead_ok = gait.reach_min_ahead <= inputs.ball_x <= gait.reach_max_ahead
-    return ahead_ok and abs(inputs.ball_y - gait.ball_side) <= gait.reach_side
+    return (
+        ahead_ok and abs(_off_line(inputs.ball_y - gait.ball_side, inputs, gait)) <= gait.reach_side
+    )
 
 
 def ball_in_front(inputs: DribbleInputs, gait: DribbleGait) -> bool:
@@ -195,7 +214,9 @@ def ball_in_front(inputs: DribbleInputs, gait: DribbleGait) -> bool:
     least ``reach_min_ahead`` ahead of the torso centre, and the further off the gait's line
     sideways (beyond ``reach_side``), the further ahead too (a ball 0.2 m to the side at the
     height of the toes is not walked at diagonally, it is walked round)."""
-    off_line = max(0.0, abs(inputs.ball_y - gait.ball_side) - gait.reach_side)
+    off_line = max(
+        0.0, abs(_off_line(inputs.ball_y - gait.ball_side, inputs, gait)) - gait.reach_side
+    )
     return inputs.ball_x >= gait.reach_min_ahead + off_line
 
 
@@ -221,14 +242,18 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     angle = math.radians(math.copysign(min(beyond, gait.max_placement_deg), error))
     ux, uy = math.cos(angle), math.sin(angle)
     ahead_error = inputs.ball_x - (gait.ball_ahead * ux - gait.ball_side * uy)
-    side_error = inputs.ball_y - (gait.ball_ahead * uy + gait.ball_side * ux)
+    side_error = _off_line(
+        inputs.ball_y - (gait.ball_ahead * uy + gait.ball_side * ux), inputs, gait
+    )
     orbit = -math.radians(turn_deg) * max(inputs.ball_x, 0.0)
     vy = _clip(gait.side_gain * side_error + orbit, gait.max_side_speed)
     turn_deg = _clip(turn_deg + gait.turn_gain * pursuit_deg, gait.max_turn_deg)
     aligned = max(0.0, 1.0 - abs(side_error) / gait.side_slowdown)
     facing = max(0.0, 1.0 - abs(error) / gait.heading_slowdown_deg)
+    turning = inputs.turning or abs(error) > gait.placement_deadband_deg
+    limit = min(gait.max_speed, gait.turning_max_speed) if turning else gait.max_speed
     if ball_within_reach(inputs, gait):
-        base = gait.speed * aligned * facing
+        base = min(gait.speed, limit) * aligned * facing
     elif inputs.ball_x > gait.reach_max_ahead:  # rolled off ahead: follow it
         base = gait.beyond_reach_speed * facing
     else:
@@ -237,9 +262,22 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
     if ahead_error > 0.0:  # following a ball that is nearer than wanted would tread on it
         catch_up += gait.follow_gain * max(inputs.ball_vx, 0.0)
     catch_up *= max(facing, gait.turning_catch_up_share)
-    vx = min(max(base + catch_up, gait.min_speed), gait.max_speed)
+    vx = min(max(base + catch_up, gait.min_speed), limit)
     calm = _calm_share(inputs.tilt_deg, gait)
     return vx * calm, vy * calm, turn_deg * calm
+
+
+def still_turning(was_turning: bool, inputs: DribbleInputs, gait: DribbleGait) -> bool:
+    """Whether the robot is (still) coming out of a sharp turn: it starts one when the
+    heading error passes the placement dead band and ends it once the error is within
+    ``turn_settled_deg`` (hysteresis: the error swings by 10 deg while the robot settles)
+    with the ball further ahead than ``ball_ahead`` (speeding up towards a near, slow ball
+    overran it)."""
+    error = abs(inputs.heading_error_deg)
+    if error > gait.placement_deadband_deg:
+        return True
+    settled = error <= gait.turn_settled_deg and inputs.ball_x > gait.ball_ahead
+    return was_turning and not settled
 
 
 def _fetch(inputs: DribbleInputs, gait: DribbleGait) -> bool:
@@ -255,8 +293,19 @@ def _pursuit_deg(inputs: DribbleInputs, gait: DribbleGait) -> float:
     heading is roughly right (turning to a new direction has its own law)."""
     if gait.pursuit_share <= 0.0 or abs(inputs.heading_error_deg) > gait.placement_deadband_deg:
         return 0.0
-    bearing = math.degrees(math.atan2(inputs.ball_y - gait.ball_side, max(inputs.ball_x, 0.1)))
+    off_line = _off_line(inputs.ball_y - gait.ball_side, inputs, gait)
+    bearing = math.degrees(math.atan2(off_line, max(inputs.ball_x, 0.1)))
     return _clip(gait.pursuit_share * bearing, gait.pursuit_max_deg)
+
+
+def _off_line(side: float, inputs: DribbleInputs, gait: DribbleGait) -> float:
+    """How far a ball ``side`` metres to the left of the gait's line lies outside the
+    corridor (``ball_corridor`` either way) where it counts as on the line. Turning (the
+    heading error beyond the placement dead band) there is no corridor: coming out of a sharp
+    turn at speed, a ball beside the line met the landing foot's side and tripped the robot."""
+    if abs(inputs.heading_error_deg) > gait.placement_deadband_deg:
+        return side
+    return side - _clip(side, gait.ball_corridor)
 
 
 def recovery_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, float, float]:
@@ -446,12 +495,15 @@ class DribbleSkill(Skill):
         #: the last inputs and command, for benchmarks and debugging (gait's own frame)
         self.last_inputs: DribbleInputs | None = None
         self.last_command: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        #: coming out of a sharp turn (see :func:`still_turning`)
+        self._turning = False
 
     def reset(self) -> None:
         if self._engine is not None:
             self._engine.reset()
         self.last_inputs = None
         self.last_command = (0.0, 0.0, 0.0)
+        self._turning = False
 
     def validate(self, kind: str, direction_deg: float, foot: str = "left") -> None:
         _check_kind(kind)
@@ -503,6 +555,8 @@ class DribbleSkill(Skill):
         if inputs is None:  # lost the ball or the own pose: tread on the spot until seen
             command = (0.0, 0.0, 0.0)
         else:
+            self._turning = still_turning(self._turning, inputs, gait)
+            inputs = replace(inputs, turning=self._turning)
             own = inputs.mirrored() if self._mirror else inputs
             command = dribble_velocity(own, gait)
             self.last_inputs = own
