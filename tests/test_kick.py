@@ -169,6 +169,19 @@ def test_packaged_kick_is_calibrated_with_increasing_distances():
     assert len(motion.distances) >= 2
 
 
+def test_basic_kicks_pick_strengths_from_each_feet_own_table_after_the_approach():
+    """After the approach each foot has its own table (measured on basic kicks, not stand
+    kicks): the right kick is spent near 2.55 m while the left reaches about 3 m, so the right
+    foot needs more strength for the same distance."""
+    left = kick_motion(0, None, "left", aligned=True)
+    right = kick_motion(0, None, "right", aligned=True)
+    stand = kick_motion(0)
+    assert left.distances != stand.distances and right.distances != stand.distances
+    assert left.distance_range_m[1] > right.distance_range_m[1]
+    assert right.strength_for(2.3) > left.strength_for(2.3)
+    assert left.strength_for(3.0) == right.strength_for(3.0) == 1.0
+
+
 def test_a_distance_table_that_does_not_increase_is_refused():
     data = {
         "k": {

@@ -1,0 +1,61 @@
+"""Basic-kick figures over several layout seeds with kick/basic_kick module constants changed
+for this process only (an experiment runner; the packaged values stay as they are).
+
+Run: ``PYTHONPATH=. nice -n 5 python scripts/kick/sweep.py --layout-seeds 0 1 2
+--set kick.TOUCHDOWN_FORCE_N=20 [--kicks FILE] [--distance 3]``. Prints the figures of
+``benchmarks.kick.basic_kick_figures`` per seed and the falls / misses summed over the seeds."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+from pathlib import Path
+
+from behaviors.kick import load_kicks
+from benchmarks.kick import FALL_STAGES, SkillSettings, basic_kick_figures
+
+
+def apply(changes: list[str]) -> None:
+    """``module.NAME=value`` (module under ``behaviors``) -> setattr, value as float or int."""
+    for change in changes:
+        target, value = change.split("=")
+        module_name, attribute = target.rsplit(".", 1)
+        module = importlib.import_module(f"behaviors.{module_name}")
+        old = getattr(module, attribute)  # unknown names fail here
+        setattr(
+            module,
+            attribute,
+            type(old)(float(value))
+            if not isinstance(old, bool)
+            else value.lower() in ("1", "true"),
+        )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--layout-seeds", type=int, nargs="+", default=[0, 1, 2])
+    parser.add_argument("--set", nargs="*", default=[])
+    parser.add_argument("--kicks", type=Path)
+    parser.add_argument("--distance", default="3")
+    parser.add_argument("--trials", type=int, default=20)
+    args = parser.parse_args()
+    apply(args.set)
+    settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
+    asked = args.distance if args.distance == "long" else float(args.distance)
+    falls = misses = 0
+    for seed in args.layout_seeds:
+        f = basic_kick_figures(args.trials, 0, asked, seed, settings=settings)
+        falls += int(f["basic_kick_falls"])
+        misses += int(f["basic_kick_misses"])
+        stages = " ".join(f"{stage} {f[f'basic_kick_falls_{stage}']:.0f}" for stage in FALL_STAGES)
+        print(
+            f"seed {seed}: median {f['basic_kick_distance_m']:.2f} m, dir "
+            f"{f['basic_kick_direction_error_deg']:.1f} deg, time {f['basic_kick_time_s']:.2f} s,"
+            f" falls {f['basic_kick_falls']:.0f} ({stages}), misses {f['basic_kick_misses']:.0f}",
+            flush=True,
+        )
+    print(f"total falls {falls}, misses {misses} ({' '.join(args.set)} {args.kicks or ''})")
+
+
+if __name__ == "__main__":
+    main()
