@@ -91,6 +91,13 @@ FOLDED_FRAMES = 3
 FRONT_UP_FRAMES = 2
 ABORT_TILT_DEG = 75.0
 ABORT_BACK_DEG = 40.0
+#: A front get-up whose torso lies on its back (IMU pitch within FLIPPED_PITCH_DEG) from
+#: FLIPPED_AFTER_S on has rolled over (a retry from the face, hips up, goes over the head in
+#: 0.3-0.4 s; a tip back from the knees lands there too): the back get-up starts then instead
+#: of after the FRONT_UP_FRAMES (0.75 s). The window leaves out a torso still upside down
+#: (pitch near +-180) in the middle of the roll.
+FLIPPED_AFTER_S = 0.2
+FLIPPED_PITCH_DEG = (-130.0, -50.0)
 
 
 @dataclass(frozen=True)
@@ -337,6 +344,8 @@ class _Attempt:
     abort_after_s: float | None = None
     #: ... and from which a torso leaning back too far ends it
     lean_abort_after_s: float | None = None
+    #: ... and from which a torso lying on its back ends it (front get-ups)
+    flipped_after_s: float | None = None
     #: the balance correction of this sequence (None: plays open loop) and from when it acts
     balance: RiseBalance | None = None
     balance_after_s: float = 0.0
@@ -445,6 +454,7 @@ class GetUpSkill(Skill):
                 player,
                 abort_after_s=sum(frame.total for frame in sequence.frames[:sat_up]),
                 lean_abort_after_s=sum(frame.total for frame in sequence.frames[:folded]),
+                flipped_after_s=None if side == "back" else FLIPPED_AFTER_S,
                 balance=balance,
                 balance_after_s=(
                     0.0
@@ -478,7 +488,8 @@ class GetUpSkill(Skill):
         return robot_stands(state) and not attempt.rolling
 
     def _fell_back(self, state: RobotState) -> bool:
-        """A get-up past its sit-up with the torso lying again or tipping back: it failed."""
+        """A get-up past its sit-up with the torso lying again or tipping back, or a front
+        get-up that rolled onto the back: it failed."""
         attempt = self._attempt
         assert attempt.player is not None
         elapsed = attempt.player.elapsed
@@ -492,7 +503,13 @@ class GetUpSkill(Skill):
             and elapsed >= attempt.lean_abort_after_s
             and state.pitch_deg < -ABORT_BACK_DEG
         )
-        return lying or tipping
+        low, high = FLIPPED_PITCH_DEG
+        flipped = (
+            attempt.flipped_after_s is not None
+            and elapsed >= attempt.flipped_after_s
+            and low < state.pitch_deg < high
+        )
+        return lying or tipping or flipped
 
     def _balanced_joints(self, state: RobotState) -> Mapping[str, float]:
         """The measured joint angles as the player should see them: with a balance correction
