@@ -8,7 +8,9 @@ matching keyframe sequence and finishes once the robot stands again: torso uprig
 carrying the weight, checked from the start of the last frame's hold (the hold only keeps the
 pose). A sequence that ends with the robot still down is tried again from the new posture (the
 caller decides how long to keep trying); a back get-up whose torso lies again after the sit-up
-is abandoned at once, so that the retry fits into the 4 s a robot has to be back up.
+is abandoned at once, so that the retry fits into the 4 s a robot has to be back up; a robot
+that already lies flat after a failed attempt starts the retry without waiting for the body
+to settle (:data:`RETRY_AT_ONCE_PITCH_DEG`).
 
 The get-up sequences use predictive tracking (``track: predictive`` in
 ``behaviors/data/get_up.yaml``, see :mod:`behaviors.keyframes`): a whole-body motion that lags
@@ -66,6 +68,11 @@ SETTLED_GYRO_DEG_S = 40.0
 #: ... for this many cycles in a row; after MAX_SETTLE_S the skill starts anyway.
 SETTLED_CYCLES = 3
 MAX_SETTLE_S = 1.0
+#: After a failed attempt a robot that already lies on its front or back (torso pitch past
+#: this many degrees either way) starts the next attempt at once: waiting for the gyro to
+#: quiet cost 0.2-0.35 s of the 4 s, and a retry then often ran out of time in the stand
+#: (None: always wait).
+RETRY_AT_ONCE_PITCH_DEG: float | None = 60.0
 #: The sequence that turns a robot lying on its left side onto its back (mirrored for the right).
 ROLL_FROM_LEFT = "roll_left_to_back"
 #: A back get-up has sat up by the end of its first SAT_UP_FRAMES frames: from then on a torso
@@ -84,6 +91,13 @@ FOLDED_FRAMES = 3
 FRONT_UP_FRAMES = 2
 ABORT_TILT_DEG = 75.0
 ABORT_BACK_DEG = 40.0
+#: A front get-up whose torso lies on its back (IMU pitch within FLIPPED_PITCH_DEG) from
+#: FLIPPED_AFTER_S on has rolled over (a retry from the face, hips up, goes over the head in
+#: 0.3-0.4 s; a tip back from the knees lands there too): the back get-up starts then instead
+#: of after the FRONT_UP_FRAMES (0.75 s). The window leaves out a torso still upside down
+#: (pitch near +-180) in the middle of the roll.
+FLIPPED_AFTER_S = 0.2
+FLIPPED_PITCH_DEG = (-130.0, -50.0)
 
 
 @dataclass(frozen=True)
@@ -330,6 +344,8 @@ class _Attempt:
     abort_after_s: float | None = None
     #: ... and from which a torso leaning back too far ends it
     lean_abort_after_s: float | None = None
+    #: ... and from which a torso lying on its back ends it (front get-ups)
+    flipped_after_s: float | None = None
     #: the balance correction of this sequence (None: plays open loop) and from when it acts
     balance: RiseBalance | None = None
     balance_after_s: float = 0.0
@@ -401,6 +417,12 @@ class GetUpSkill(Skill):
     def _settled(self, state: RobotState) -> bool:
         """Wait for the fall to end: a few quiet gyro readings, or MAX_SETTLE_S at most."""
         attempt = self._attempt
+        if (
+            self.attempts > 0
+            and RETRY_AT_ONCE_PITCH_DEG is not None
+            and abs(state.pitch_deg) > RETRY_AT_ONCE_PITCH_DEG
+        ):
+            return True
         attempt.waited_cycles += 1
         quiet = float(abs(state.gyro_deg_s).max()) < SETTLED_GYRO_DEG_S
         attempt.settled_cycles = attempt.settled_cycles + 1 if quiet else 0
@@ -432,6 +454,7 @@ class GetUpSkill(Skill):
                 player,
                 abort_after_s=sum(frame.total for frame in sequence.frames[:sat_up]),
                 lean_abort_after_s=sum(frame.total for frame in sequence.frames[:folded]),
+                flipped_after_s=None if side == "back" else FLIPPED_AFTER_S,
                 balance=balance,
                 balance_after_s=(
                     0.0
@@ -465,7 +488,8 @@ class GetUpSkill(Skill):
         return robot_stands(state) and not attempt.rolling
 
     def _fell_back(self, state: RobotState) -> bool:
-        """A get-up past its sit-up with the torso lying again or tipping back: it failed."""
+        """A get-up past its sit-up with the torso lying again or tipping back, or a front
+        get-up that rolled onto the back: it failed."""
         attempt = self._attempt
         assert attempt.player is not None
         elapsed = attempt.player.elapsed
@@ -479,7 +503,13 @@ class GetUpSkill(Skill):
             and elapsed >= attempt.lean_abort_after_s
             and state.pitch_deg < -ABORT_BACK_DEG
         )
-        return lying or tipping
+        low, high = FLIPPED_PITCH_DEG
+        flipped = (
+            attempt.flipped_after_s is not None
+            and elapsed >= attempt.flipped_after_s
+            and low < state.pitch_deg < high
+        )
+        return lying or tipping or flipped
 
     def _balanced_joints(self, state: RobotState) -> Mapping[str, float]:
         """The measured joint angles as the player should see them: with a balance correction

@@ -68,6 +68,19 @@ def run_trial(
     """One fall and one get-up; see the module docstring for what counts as success.
     ``balances`` replaces the packaged balance corrections (a candidate file), ``residual``
     the skill's learned residual (a trained policy)."""
+    session, driver, lying_on = fall(robot_type, direction, seed)
+    try:
+        return play_get_up(
+            driver, robot_type, direction, seed, lying_on, time_limit, observer, balances, residual
+        )
+    finally:
+        session.close()
+
+
+def fall(robot_type: int, direction: str, seed: int) -> tuple[Session, LocalAgent, str | None]:
+    """The trial's fall: a fresh session with one robot of ``robot_type`` knocked over towards
+    ``direction`` (seeded by ``seed``), perceived once at rest; the side it lies on (perceived).
+    The caller closes the session."""
     rng = np.random.default_rng(seed)
     session = Session(SessionConfig(seed=seed, beam_noise=False))
     try:
@@ -75,30 +88,46 @@ def run_trial(
         if not knock_over(driver, direction, rng):
             raise RuntimeError(f"type {robot_type} seed {seed}: the robot did not fall {direction}")
         driver.perceive()
-        lying_on = driver.state.lying_on
-        skill = driver.behavior.skill("get_up")
-        assert isinstance(skill, GetUpSkill)
-        if balances is not None:
-            skill.balances = balances
-        if residual is not None:
-            skill.residual = residual
-        cycles = 0
-        finished = False
-        while not finished and cycles < round(time_limit / CYCLE_SECONDS):
-            finished = driver.run("get_up")
-            cycles += 1
-            if observer is not None:
-                observer(driver, cycles)
-        if not finished:
-            return TrialResult(robot_type, direction, seed, lying_on, False, None)
-        elapsed = cycles * CYCLE_SECONDS
-        standing_now = driver.is_standing()
-        for _ in range(25):  # still up half a second later, holding the stand pose
-            driver.run("pose", "stand")
-        ok = standing_now and driver.is_standing()
-        return TrialResult(robot_type, direction, seed, lying_on, ok, elapsed if ok else None)
-    finally:
+    except BaseException:
         session.close()
+        raise
+    return session, driver, driver.state.lying_on
+
+
+def play_get_up(
+    driver: LocalAgent,
+    robot_type: int,
+    direction: str,
+    seed: int,
+    lying_on: str | None,
+    time_limit: float = 4.0,
+    observer: Observer | None = None,
+    balances: Mapping[str, RiseBalance] | None = None,
+    residual: ResidualSource | None = None,
+) -> TrialResult:
+    """The get-up half of a trial, from a fallen ``driver`` (:func:`fall`, or a restored
+    copy of one: ``learning/get_up_eval.py``) to the benchmark's verdict."""
+    skill = driver.behavior.skill("get_up")
+    assert isinstance(skill, GetUpSkill)
+    if balances is not None:
+        skill.balances = balances
+    if residual is not None:
+        skill.residual = residual
+    cycles = 0
+    finished = False
+    while not finished and cycles < round(time_limit / CYCLE_SECONDS):
+        finished = driver.run("get_up")
+        cycles += 1
+        if observer is not None:
+            observer(driver, cycles)
+    if not finished:
+        return TrialResult(robot_type, direction, seed, lying_on, False, None)
+    elapsed = cycles * CYCLE_SECONDS
+    standing_now = driver.is_standing()
+    for _ in range(25):  # still up half a second later, holding the stand pose
+        driver.run("pose", "stand")
+    ok = standing_now and driver.is_standing()
+    return TrialResult(robot_type, direction, seed, lying_on, ok, elapsed if ok else None)
 
 
 def main() -> None:
@@ -132,39 +161,52 @@ def main() -> None:
     args = parser.parse_args()
     balances = None if args.balance is None else load_balances(args.balance)
     residual = None if args.residual is None else PolicyResidual.load(args.residual)
-    directions = args.directions.split(",")
     robot_types = [int(t) for t in args.types.split(",")]
-    results = []
-    for robot_type in robot_types:
-        for k in range(args.trials_per_type):
-            direction = directions[k % len(directions)]
-            seed = args.seed + 1000 * robot_type + k
-            results.append(
-                run_trial(
-                    robot_type,
-                    direction,
-                    seed,
-                    args.time_limit,
-                    balances=balances,
-                    residual=residual,
-                )
-            )
+    results = [
+        run_trial(*spec, args.time_limit, balances=balances, residual=residual)
+        for spec in trial_specs(
+            robot_types, args.trials_per_type, args.seed, args.directions.split(",")
+        )
+    ]
+    print(summary(results, robot_types, args.show_failures))
+
+
+def trial_specs(
+    robot_types: list[int], trials_per_type: int, seed: int, directions: list[str]
+) -> list[tuple[int, str, int]]:
+    """The benchmark's trials as (robot type, fall direction, seed), in the order it runs
+    them: the directions taken in turn, seed ``seed + 1000 * type + k`` for trial k."""
+    return [
+        (robot_type, directions[k % len(directions)], seed + 1000 * robot_type + k)
+        for robot_type in robot_types
+        for k in range(trials_per_type)
+    ]
+
+
+def summary(results: list[TrialResult], robot_types: list[int], show_failures: bool) -> str:
+    """The benchmark's report: success rate, median time, rates by type and by lying side,
+    and with ``show_failures`` one line per failed trial."""
     times = [r.time_s for r in results if r.time_s is not None]
-    print(f"get_up_success_rate: {sum(r.succeeded for r in results) / len(results):.3f}")
-    print(f"get_up_time_s_median: {statistics.median(times) if times else float('nan'):.2f}")
+    lines = [
+        f"get_up_success_rate: {sum(r.succeeded for r in results) / len(results):.3f}",
+        f"get_up_time_s_median: {statistics.median(times) if times else float('nan'):.2f}",
+    ]
     for robot_type in robot_types:
         mine = [r for r in results if r.robot_type == robot_type]
         rate = sum(r.succeeded for r in mine) / len(mine)
-        print(f"get_up_success_rate[type={robot_type}]: {rate:.3f}")
+        lines.append(f"get_up_success_rate[type={robot_type}]: {rate:.3f}")
     for side in ("front", "back", "left", "right"):
         mine = [r for r in results if r.lying_on == side]
         if mine:
             rate = sum(r.succeeded for r in mine) / len(mine)
-            print(f"get_up_success_rate[lying_on={side}]: {rate:.3f} ({len(mine)} trials)")
-    if args.show_failures:
-        for r in results:
-            if not r.succeeded:
-                print(f"failed: type {r.robot_type} {r.direction} seed {r.seed} lying {r.lying_on}")
+            lines.append(f"get_up_success_rate[lying_on={side}]: {rate:.3f} ({len(mine)} trials)")
+    if show_failures:
+        lines += [
+            f"failed: type {r.robot_type} {r.direction} seed {r.seed} lying {r.lying_on}"
+            for r in results
+            if not r.succeeded
+        ]
+    return "\n".join(lines)
 
 
 if __name__ == "__main__":
