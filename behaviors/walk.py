@@ -118,11 +118,8 @@ class WalkParameters:
     #: the target again (the drift of the stop steps, and the look-ahead, sent type 2 off
     #: again with its torso pitched back, and the restart's backward steps tipped it over) ...
     go_to_stop_before_leaving: bool = False
-    #: ... the fastest turn (deg/s) it asks for (``GoToGains.max_turn_deg``) ...
+    #: ... and the fastest turn (deg/s) it asks for (``GoToGains.max_turn_deg``)
     go_to_max_turn_deg: float = 120.0
-    #: ... and within what distance (m) of a target with a final heading it turns to that
-    #: heading (farther out it faces the way; inside, it may walk backwards or sideways)
-    go_to_final_heading_distance: float = 1.5
     #: how much of the planned torso motion really happens (measured)
     odometry_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
     #: torso drift (m/s, forward and left in the robot frame) while stepping that the step plan
@@ -576,10 +573,7 @@ class WalkSkill(_WalkBase):
         forward = math.cos(h) * dx + math.sin(h) * dy
         left = -math.sin(h) * dx + math.cos(h) * dy
         travel = math.degrees(math.atan2(dy, dx))
-        final_heading_distance = engine.params.go_to_final_heading_distance
-        facing_travel = distance > (
-            FACE_TRAVEL_DISTANCE if heading is None else final_heading_distance
-        )
+        facing_travel = distance > (FACE_TRAVEL_DISTANCE if heading is None else 1.5)
         goal_heading = travel if facing_travel else (ph if heading is None else heading)
         heading_error = wrap_deg(goal_heading - ph)
         final_error = 0.0 if heading is None else wrap_deg(heading - ph)
