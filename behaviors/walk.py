@@ -109,8 +109,25 @@ class WalkParameters:
     #: with a foot spinning (gyro 150-400 deg/s) while the hold's drift swung between -30 and
     #: 0 deg and the step's turn flipped sign step by step (walk.yaml has the figures)
     go_to_heading_hold_reference: str = "command"
+    #: walking to a target (``walk``, session 7): the seconds of ``odometry_drift`` foreseen
+    #: when the way left is measured: after arriving the robot steps out the step under way and
+    #: two more that bring the feet home, drifting back all the while (it stopped 2-6 cm short
+    #: of its targets with the drift in the odometry alone) ...
+    go_to_drift_lookahead_s: float = 0.0
+    #: ... whether, once arrived, it steps out its stop before it tests whether it has left
+    #: the target again (the drift of the stop steps, and the look-ahead, sent type 2 off
+    #: again with its torso pitched back, and the restart's backward steps tipped it over) ...
+    go_to_stop_before_leaving: bool = False
+    #: ... and the fastest turn (deg/s) it asks for (``GoToGains.max_turn_deg``)
+    go_to_max_turn_deg: float = 120.0
     #: how much of the planned torso motion really happens (measured)
     odometry_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    #: torso drift (m/s, forward and left in the robot frame) while stepping that the step plan
+    #: does not know about, added to the odometry: measured in the simulator (session 7,
+    #: walk_velocity for 3 s at 0.15, 0.3 and 0.7 m/s forward, 0.2 m/s sideways): every type
+    #: walks 0.08-0.12 m/s less forward than its steps plan, at any speed, so the localiser
+    #: ran ahead of the robot and ``walk`` stopped short of its targets (by 6-11 cm on type 4)
+    odometry_drift: tuple[float, float] = (0.0, 0.0)
     #: arm pose while walking (degrees), right side; the left mirrors it
     arm_pitch_deg: float = -90.0
     arm_out_deg: float = -10.0
@@ -139,22 +156,27 @@ def _read_parameters(data: dict[str, Any], source: str) -> WalkParameters:
     if unknown:
         raise ValueError(f"{source}: unknown step parameter(s) {sorted(unknown)}")
     values = {k: v for k, v in data.items() if k != "step"}
-    if "odometry_scale" in values:
-        values["odometry_scale"] = tuple(float(v) for v in values["odometry_scale"])
+    for name in ("odometry_scale", "odometry_drift"):
+        if name in values:
+            values[name] = tuple(float(v) for v in values[name])
     return WalkParameters(step=StepParameters(**step_data), **values)
 
 
 @cache
-def walk_parameters(robot_type: int, path: Path = WALK_FILE) -> WalkParameters:
+def walk_parameters(
+    robot_type: int, path: Path = WALK_FILE, inside_skill: bool = False
+) -> WalkParameters:
     """The walk parameters of ``robot_type``: the file's ``default`` block overridden by its
-    ``type<N>`` block (both may hold a ``step`` sub-block)."""
+    ``type<N>`` block (both may hold a ``step`` sub-block), and with ``inside_skill`` (the walk
+    run by another skill) the ``inside_skills`` block's keys on top."""
     if robot_type not in ROBOT_TYPES:
         raise ValueError(f"robot type must be one of {ROBOT_TYPES}, got {robot_type!r}")
     data = yaml.safe_load(path.read_text()) or {}
     base = dict(data.get("default") or {})
     own = dict(data.get(f"type{robot_type}") or {})
-    step = {**(base.get("step") or {}), **(own.get("step") or {})}
-    merged = {**base, **own, "step": step}
+    nested = dict(data.get("inside_skills") or {}) if inside_skill else {}
+    step = {**(base.get("step") or {}), **(own.get("step") or {}), **(nested.get("step") or {})}
+    merged = {**base, **own, **nested, "step": step}
     return _read_parameters(merged, f"{path} (type{robot_type})")
 
 
@@ -204,6 +226,11 @@ class WalkEngine:
     def phase(self) -> tuple[int, bool]:
         """(t, left_active) of the step under way (t = -1 before the first step)."""
         return self.generator.phase
+
+    @property
+    def is_stepping(self) -> bool:
+        """Whether a step is under way (the last cycle's targets came from a step)."""
+        return self._stepping
 
     @property
     def is_stopped(self) -> bool:
@@ -388,13 +415,21 @@ class WalkEngine:
         command = self.generator.command
         share = 1.0 / self.params.step.step_cycles
         sx, sy, st = self.params.odometry_scale
+        drift_x, drift_y = self.params.odometry_drift
         localizer = getattr(context.world, "localizer", None)
         if localizer is not None:
             localizer.add_odometry(
-                command.forward * share * sx,
-                command.left * share * sy,
+                command.forward * share * sx + drift_x * CYCLE_SECONDS,
+                command.left * share * sy + drift_y * CYCLE_SECONDS,
                 math.degrees(command.turn * share * st),
             )
+
+
+def _inside_another_skill(context: SkillContext) -> bool:
+    """Whether the walk runs as another skill's sub-behaviour (``basic_kick`` runs ``walk`` and
+    ``walk_velocity``): the manager's stack of running skills holds more than the walk."""
+    running = getattr(context.manager, "_running", None)
+    return isinstance(running, list) and len(running) > 1
 
 
 class _WalkBase(Skill):
@@ -406,6 +441,8 @@ class _WalkBase(Skill):
         #: at its own copy of ``walk.yaml``; read once per file and robot type)
         self.walk_file: Path = WALK_FILE
         self._file: Path = WALK_FILE
+        #: whether the engine was made for a walk run by another skill (``inside_skills``)
+        self._inside = False
 
     def reset(self) -> None:
         if self._engine is not None:
@@ -413,11 +450,18 @@ class _WalkBase(Skill):
 
     def engine(self, context: SkillContext) -> WalkEngine:
         robot_type = context.world.robot.robot_type
+        inside = _inside_another_skill(context)
         engine = self._engine
-        if engine is None or engine.robot_type != robot_type or self._file != self.walk_file:
-            params = self.engine_parameters(walk_parameters(robot_type, self.walk_file))
-            self._engine = WalkEngine(robot_type, params)
+        if (
+            engine is None
+            or engine.robot_type != robot_type
+            or self._file != self.walk_file
+            or self._inside != inside
+        ):
+            params = walk_parameters(robot_type, self.walk_file, inside)
+            self._engine = WalkEngine(robot_type, self.engine_parameters(params))
             self._file = self.walk_file
+            self._inside = inside
         return self._engine
 
     def engine_parameters(self, params: WalkParameters) -> WalkParameters:
@@ -504,7 +548,12 @@ class WalkSkill(_WalkBase):
         if pose is None:  # lost: stand (step out the current step) until localised
             engine.step(context, 0.0, 0.0, 0.0)
             return False
-        vx, vy, vturn = self._velocity(engine, pose.x, pose.y, pose.heading_deg, x, y, heading_deg)
+        stopping = self._arrived and not engine.is_stopped
+        if stopping and engine.params.go_to_stop_before_leaving:
+            engine.step(context, 0.0, 0.0, 0.0)
+            return False
+        px, py = _looked_ahead(engine, pose.x, pose.y, pose.heading_deg)
+        vx, vy, vturn = self._velocity(engine, px, py, pose.heading_deg, x, y, heading_deg)
         engine.step(context, vx, vy, vturn)
         return self._arrived and engine.is_stopped
 
@@ -535,7 +584,7 @@ class WalkSkill(_WalkBase):
             self._arrived = True
         if self._arrived:
             return 0.0, 0.0, 0.0
-        g = self.gains
+        g = replace(self.gains, max_turn_deg=engine.params.go_to_max_turn_deg)
         step = engine.params.step
         duration = step.step_cycles * CYCLE_SECONDS
         max_forward = min(step.max_forward / duration, engine.params.walk_to_max_speed)
@@ -555,3 +604,19 @@ class WalkSkill(_WalkBase):
         vy = max(-max_side, min(max_side, vy))
         vturn = max(-g.max_turn_deg, min(g.max_turn_deg, g.heading_gain * heading_error))
         return vx, vy, vturn
+
+
+def _looked_ahead(
+    engine: WalkEngine, x: float, y: float, heading_deg: float
+) -> tuple[float, float]:
+    """Where (x, y) the torso will have drifted to once the robot stands, as far as
+    ``go_to_drift_lookahead_s`` looks ahead (``odometry_drift`` over that time, added to the
+    pose of the moment; standing, no drift is foreseen)."""
+    p = engine.params
+    seconds = p.go_to_drift_lookahead_s
+    if seconds <= 0.0 or not engine.is_stepping:
+        return x, y
+    forward, left = (d * seconds for d in p.odometry_drift)
+    h = math.radians(heading_deg)
+    c, s = math.cos(h), math.sin(h)
+    return x + c * forward - s * left, y + s * forward + c * left

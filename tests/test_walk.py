@@ -151,6 +151,27 @@ def test_the_step_reference_is_the_planned_turn_of_the_step_under_way():
     assert command._reference_turn_deg_s() == pytest.approx(120.0)
 
 
+@pytest.mark.parametrize("robot_type", ROBOT_TYPES)
+def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
+    """Session 7: every type walks 0.08-0.12 m/s less forward than its steps plan, so the
+    odometry adds that drift (and ``walk`` to a target is capped at 0.65 m/s); inside
+    basic_kick (a sub-behaviour) the walk keeps the settings the kick was tuned on (with the
+    drift no basic kick of tests/test_kick.py kicked)."""
+    own = walk_parameters(robot_type)
+    assert -0.12 <= own.odometry_drift[0] <= -0.08
+    assert own.go_to_drift_lookahead_s > 0.0
+    inside = walk_parameters(robot_type, inside_skill=True)
+    assert inside.odometry_drift == (0.0, 0.0)
+    assert inside.go_to_drift_lookahead_s == 0.0
+    assert inside.walk_to_max_speed == 0.75 > own.walk_to_max_speed
+    session_7 = {
+        "odometry_drift": own.odometry_drift,
+        "go_to_drift_lookahead_s": own.go_to_drift_lookahead_s,
+        "walk_to_max_speed": own.walk_to_max_speed,
+    }
+    assert replace(inside, **session_7) == own  # nothing else differs
+
+
 def test_a_walk_skill_pointed_at_another_file_walks_with_its_settings(tmp_path):
     """benchmarks/locomotion.py --set: trials on a copy of walk.yaml are repo commands."""
     path = with_settings(["type0.heading_hold_gain=0.25"], tmp_path, WALK_FILE)
@@ -304,3 +325,37 @@ def test_walk_forward_reaches_0_7_mps_on_every_type(robot_type):
     assert not fell
     assert forward >= 0.7
     assert abs(left) < 0.2 * forward  # walking straight on, not drifting off sideways
+
+
+@pytest.mark.parametrize("robot_type", (0, 1))
+def test_walk_to_targets_stops_within_10_cm_without_falling(robot_type):
+    """Issue 4: ``walk`` stops within 0.1 m of its targets (ground truth; the walk stops on the
+    localiser's estimate, so the odometry must know the walk's backward drift) and does not
+    fall: six targets straight on, aside, behind, with and without a final heading. Session 7:
+    mean 0.032 / 0.034 m on types 0 / 1 (largest 0.050 / 0.058); session 6's walk (no drift in
+    the odometry) 0.057 / 0.063 m (largest 0.094), the robot stopping short of its targets."""
+    driver = new_driver(robot_type, seed=5, beam=(-6.0, 0.0, 0.0))
+    targets = (
+        (-4.5, 0.3, None),
+        (-4.2, -0.6, 90.0),
+        (-5.5, -0.2, 180.0),
+        (-4.0, 0.8, None),
+        (-5.0, 1.2, -90.0),
+        (-6.0, 0.5, 0.0),
+    )
+    errors = []
+    try:
+        for target in targets:
+            done = False
+            for _ in range(600):
+                done = driver.run("walk", *target)
+                assert not driver.fallen(), f"fell walking to {target}"
+                if done:
+                    break
+            assert done, f"did not reach {target}"
+            x, y, _ = driver.ground_pose()
+            errors.append(math.hypot(x - target[0], y - target[1]))
+    finally:
+        driver.session.close()
+    assert max(errors) < 0.1, errors
+    assert sum(errors) / len(errors) < 0.05, errors
