@@ -162,6 +162,14 @@ class Behavior:
         return self._previous
 
     @property
+    def running(self) -> tuple[str, ...]:
+        """The skills stepping at this moment, outermost first (``("basic_kick", "walk")``
+        while ``basic_kick`` runs ``walk`` as a sub-behaviour; empty between steps). Why: a
+        skill may behave differently when another skill drives it (the walk's
+        ``inside_skills`` settings)."""
+        return tuple(self._running)
+
+    @property
     def cycle(self) -> int:
         """How many cycles :meth:`begin_cycle` has started."""
         return self._cycle

@@ -428,8 +428,8 @@ class WalkEngine:
 def _inside_another_skill(context: SkillContext) -> bool:
     """Whether the walk runs as another skill's sub-behaviour (``basic_kick`` runs ``walk`` and
     ``walk_velocity``): the manager's stack of running skills holds more than the walk."""
-    running = getattr(context.manager, "_running", None)
-    return isinstance(running, list) and len(running) > 1
+    running = getattr(context.manager, "running", ())
+    return len(running) > 1
 
 
 class _WalkBase(Skill):

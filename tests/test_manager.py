@@ -63,6 +63,19 @@ class Parent(Skill):
         return context.manager.execute_sub_behavior(sub)
 
 
+class StackReader(Skill):
+    """Records the manager's stack of running skills as it sees it while stepping."""
+
+    name = "test_stack_reader"
+
+    def __init__(self) -> None:
+        self.seen: tuple[str, ...] = ()
+
+    def step(self, context: SkillContext) -> bool:
+        self.seen = context.manager.running
+        return True
+
+
 class Typed(Skill):
     """Takes a distance and an optional label."""
 
@@ -178,6 +191,15 @@ def test_sub_behaviour_keeps_top_level_and_restarts_on_switch(manager):
     assert (counting.resets, counting.steps) == (2, 1), "parent switched sub-skills"
     assert manager.current == BehaviorRun("test_parent", 4)
     assert manager.skill("test_parent").resets == 1
+
+
+def test_running_names_the_stack_of_skills_stepping_now(manager):
+    reader = manager.skill("test_stack_reader")
+    _cycle(manager, "test_stack_reader")
+    assert reader.seen == ("test_stack_reader",)
+    _cycle(manager, "test_parent", "test_stack_reader")
+    assert reader.seen == ("test_parent", "test_stack_reader")
+    assert manager.running == (), "nothing runs between steps"
 
 
 def test_restarted_parent_restarts_its_sub_behaviour(manager):
