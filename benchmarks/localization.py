@@ -71,6 +71,9 @@ def carried_robot(side: str, cycles: int, seed: int) -> dict[str, list[float]]:
             _connect(session, "Others")
         agent = _connect(session, "Mine")
         model = WorldModel(0, "Mine")
+        # PlayOn: before kick-off the referee (as rcssserver3d's) moves robots out of the
+        # opponent half and the centre circle, which would fight the trainer's path
+        _trainer(session, "(playMode PlayOn)")
         x, y = rng.uniform(-10.0, 10.0), rng.uniform(-6.0, 6.0)
         heading, turn = rng.uniform(-180.0, 180.0), 2.0
         for cycle in range(cycles):
