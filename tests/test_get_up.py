@@ -219,7 +219,7 @@ def test_the_skill_plays_injected_sequences_type_variant_first():
     entry = raw_entries()["get_up_back"]
     sequences = candidate_sequences("get_up_back_type2", entry)
     assert sequence_for("get_up_back", 2, sequences).name == "get_up_back_type2"
-    assert sequence_for("get_up_back", 0, sequences).name == "get_up_back"
+    assert sequence_for("get_up_back", 2).name == "get_up_back"
     assert GetUpSkill(sequences).sequences is sequences
     assert GetUpSkill().sequences["get_up_front"].frames
 
@@ -485,3 +485,20 @@ def test_front_get_up_of_types_1_to_4_keeps_the_arms_down(monkeypatch):
     }
     monkeypatch.setattr(get_up_module, "default_sequences", lambda: common)
     assert not run_trial(3, "front", 3008).succeeded
+
+
+def test_type0_back_crouch_with_less_hip_flexion_brings_a_benchmark_fall_up(monkeypatch):
+    """Benchmark fall type 0 seed 517 (``--seed 500``, ends on the back): with type 0's own
+    back get-up (crouch lj3 65 instead of the common 75) the robot stands within 4 s; with the
+    common back get-up it does not."""
+    own = sequence_for("get_up_back", 0)
+    assert own.name == "get_up_back_type0"
+    assert own.frames[3].joints["llj3"] < sequence_for("get_up_back", 2).frames[3].joints["llj3"]
+    assert run_trial(0, "back", 517).succeeded
+    common = {
+        name: sequence
+        for name, sequence in get_up_module.default_sequences().items()
+        if name != "get_up_back_type0"
+    }
+    monkeypatch.setattr(get_up_module, "default_sequences", lambda: common)
+    assert not run_trial(0, "back", 517).succeeded
