@@ -39,6 +39,7 @@ BUILTIN_SKILL_MODULES: tuple[str, ...] = (
     "behaviors.kick",
     "behaviors.basic_kick",
     "behaviors.dribble",
+    "behaviors.learned_walk",
 )
 
 for _module in BUILTIN_SKILL_MODULES:

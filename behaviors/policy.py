@@ -139,6 +139,25 @@ class MlpPolicy:
         return policy
 
 
+def load_checked_policy(
+    path: str | Path,
+    obs_names: Sequence[str],
+    action_names: Sequence[str],
+    action_scale: Sequence[float] | np.ndarray,
+) -> MlpPolicy:
+    """Load a policy file for a skill: it must take exactly ``obs_names``, give exactly
+    ``action_names`` and scale its outputs by ``action_scale`` (the skill's offsets), or a
+    :class:`PolicyError` says which does not match."""
+    policy = MlpPolicy.load(path, obs_names, action_names)
+    expected = np.asarray(action_scale, dtype=float)
+    if not np.allclose(policy.action_scale, expected):
+        raise PolicyError(
+            f"{path}: action scale {policy.action_scale.tolist()} is not the skill's "
+            f"{expected.tolist()}"
+        )
+    return policy
+
+
 def _check_layers(weights: Sequence[np.ndarray], biases: Sequence[np.ndarray]) -> None:
     """Consecutive layers must chain: w_i is (out_i, in_i), b_i is (out_i,), in_i = out_{i-1}."""
     if not weights or len(weights) != len(biases):

@@ -26,6 +26,7 @@ Odometry: every cycle the torso motion the step plan assumes (scaled by the per-
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from functools import cache
 from pathlib import Path
@@ -238,13 +239,26 @@ class WalkEngine:
         return not self._stepping and self.velocity == (0.0, 0.0, 0.0)
 
     # ------------------------------------------------------------------ one cycle
-    def step(self, context: SkillContext, vx: float, vy: float, vturn_deg: float) -> None:
-        """One cycle walking at (vx, vy) m/s and vturn_deg deg/s in the robot frame."""
+    def step(
+        self,
+        context: SkillContext,
+        vx: float,
+        vy: float,
+        vturn_deg: float,
+        offsets_deg: Mapping[str, float] | None = None,
+    ) -> None:
+        """One cycle walking at (vx, vy) m/s and vturn_deg deg/s in the robot frame.
+
+        ``offsets_deg`` (joint -> degrees) is added to the angles the engine is about to
+        track: the hook a learned residual acts through (``behaviors.learned_walk``), so the
+        residual rides on the engine's own tracking instead of replacing it."""
         self._smooth_velocity(vx, vy, math.radians(vturn_deg))
         self._track_heading(context)
         targets = self._next_foot_targets(context)
         angles = self._leg_angles(targets, context)
         self._add_arms(angles)
+        for name, offset in (offsets_deg or {}).items():
+            angles[name] = angles.get(name, 0.0) + offset
         self._send(context, angles)
         self._report_odometry(context)
         self._cycles += 1

@@ -87,6 +87,10 @@ def test_config_errors_name_the_key(tmp_path):
         load_config(path)
 
 
-def test_packaged_config_is_valid():
-    config, _ = load_config(Path(__file__).resolve().parents[1] / "config/train/get_up.yaml")
-    assert config.env_id == "naosoccer/GetUpResidual-v0"
+@pytest.mark.parametrize(
+    ("name", "env_id"),
+    [("get_up", "naosoccer/GetUpResidual-v0"), ("walk", "naosoccer/WalkResidual-v0")],
+)
+def test_packaged_configs_are_valid(name, env_id):
+    config, _ = load_config(Path(__file__).resolve().parents[1] / f"config/train/{name}.yaml")
+    assert config.env_id == env_id

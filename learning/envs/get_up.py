@@ -43,20 +43,22 @@ from behaviors.get_up import (
     GetUpSkill,
 )
 from behaviors.joint_control import CYCLE_SECONDS
+from learning.envs.config import (
+    EnvConfigError,
+    check_robot_types,
+    draw_robot_type,
+    env_config_from_mapping,
+    zero_action_speed,
+)
 from learning.falls import FALL_DIRECTIONS
 from learning.get_up_search import FallBank, closeness, make_bank
 from learning.local_agent import LocalAgent
 from world.nao_model import ROBOT_TYPES
-from world.yaml_config import ConfigError, config_from_mapping
 
 #: Cycles the robot must still stand after the skill reports standing (the benchmark's rule).
 HOLD_CYCLES = 25
 ACTION_NAMES = tuple(RESIDUAL_ACTIONS)
 ACTION_SCALE = np.array([RESIDUAL_MAX_DEG[name] for name in ACTION_NAMES])
-
-
-class EnvConfigError(ValueError):
-    """A get-up environment setting that cannot be used."""
 
 
 @dataclass(frozen=True)
@@ -79,18 +81,7 @@ class GetUpEnvConfig:
     action_penalty: float = 0.05
 
     def __post_init__(self) -> None:
-        unknown = [t for t in self.robot_types if t not in ROBOT_TYPES]
-        if not self.robot_types or unknown:
-            raise EnvConfigError(f"robot_types must be a non-empty list of {list(ROBOT_TYPES)}")
-        if self.type_weights is not None and (
-            len(self.type_weights) != len(self.robot_types)
-            or min(self.type_weights) < 0
-            or sum(self.type_weights) <= 0
-        ):
-            raise EnvConfigError(
-                "type_weights must give one weight >= 0 per robot type (not all 0), "
-                f"got {self.type_weights} for {self.robot_types}"
-            )
+        check_robot_types(self.robot_types, self.type_weights)
         if self.falls_per_type < 1:
             raise EnvConfigError(f"falls_per_type must be >= 1, got {self.falls_per_type}")
         bad = [d for d in self.directions if d not in FALL_DIRECTIONS]
@@ -101,13 +92,8 @@ class GetUpEnvConfig:
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any] | None, where: str = "env") -> GetUpEnvConfig:
-        """Build from a YAML mapping through the project's YAML validation
-        (:func:`world.yaml_config.config_from_mapping`): unknown keys, wrong types and the
-        checks above raise an :class:`EnvConfigError` naming the key."""
-        try:
-            return config_from_mapping(cls, dict(data or {}), source=where)
-        except ConfigError as error:
-            raise EnvConfigError(str(error)) from None
+        """Build from a YAML mapping (:func:`learning.envs.config.env_config_from_mapping`)."""
+        return env_config_from_mapping(cls, data, where)
 
 
 @dataclass
@@ -184,9 +170,8 @@ class GetUpResidualEnv(gym.Env):
         options = options or {}
         robot_type = options.get("robot_type")
         if robot_type is None:
-            types = self.config.robot_types
-            weights = np.array(self.config.type_weights or [1.0] * len(types))
-            robot_type = types[int(self.np_random.choice(len(types), p=weights / weights.sum()))]
+            config = self.config
+            robot_type = draw_robot_type(self.np_random, config.robot_types, config.type_weights)
         bank = self.bank(int(robot_type))
         fall = options.get("fall")
         if fall is None:
@@ -306,23 +291,13 @@ def measure_speed(config: GetUpEnvConfig, seconds: float, seed: int = 0) -> dict
         for robot_type in config.robot_types:
             env.bank(robot_type)
         bank_s = time.monotonic() - start
-        env.reset(seed=seed)
-        steps, episodes, successes = 0, 0, 0
-        zero = np.zeros(len(ACTION_NAMES), dtype=np.float32)
-        start = time.monotonic()
-        while time.monotonic() - start < seconds:
-            _, _, terminated, truncated, info = env.step(zero)
-            steps += 1
-            if terminated or truncated:
-                episodes += 1
-                successes += bool(info.get("success"))
-                env.reset()
-        elapsed = time.monotonic() - start
+        steps_per_s, endings = zero_action_speed(env, seconds, seed)
     finally:
         env.close()
+    successes = sum(bool(info.get("success")) for _, info in endings)
     return {
         "bank_s": bank_s,
-        "steps_per_s": steps / elapsed,
-        "episodes": episodes,
-        "success": successes / max(1, episodes),
+        "steps_per_s": steps_per_s,
+        "episodes": len(endings),
+        "success": successes / max(1, len(endings)),
     }
