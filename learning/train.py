@@ -164,19 +164,26 @@ class ProgressLog(BaseCallback):
         self.max_seconds = max_seconds
         self.returns: deque[float] = deque(maxlen=window)
         self.successes: deque[float] = deque(maxlen=window)
+        self.lengths: deque[int] = deque(maxlen=window)
         self.episodes = 0
+        self._steps_in_episode = 0
         self._start = time.monotonic()
         self._next = every
         self._running = 0.0
 
     def _on_step(self) -> bool:
         self._running += float(self.locals["rewards"][0])
+        self._steps_in_episode += 1
         info = self.locals["infos"][0]
         if self.locals["dones"][0]:
             self.episodes += 1
             self.returns.append(self._running)
-            self.successes.append(float(info.get("success", False)))
+            self.lengths.append(self._steps_in_episode)
+            # get-up episodes report success; walk episodes report a fall (success: none)
+            success = info["success"] if "success" in info else not info.get("fell", False)
+            self.successes.append(float(success))
             self._running = 0.0
+            self._steps_in_episode = 0
         if self.num_timesteps >= self._next:
             self._next += self.every
             print(self.summary(), flush=True)
@@ -187,10 +194,11 @@ class ProgressLog(BaseCallback):
         elapsed = time.monotonic() - self._start
         success = np.mean(self.successes) if self.successes else float("nan")
         ret = np.mean(self.returns) if self.returns else float("nan")
+        length = np.mean(self.lengths) if self.lengths else float("nan")
         return (
             f"steps {self.num_timesteps} ({self.num_timesteps / max(elapsed, 1e-9):.0f}/s), "
             f"episodes {self.episodes}, last {len(self.successes)}: success {success:.3f}, "
-            f"return {ret:.2f}, {elapsed / 60:.1f} min"
+            f"return {ret:.2f}, length {length:.0f} steps, {elapsed / 60:.1f} min"
         )
 
 

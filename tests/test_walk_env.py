@@ -21,7 +21,7 @@ from behaviors.learned_walk import (
     OBS_NAMES,
     LearnedWalkSkill,
     PolicyWalkResidual,
-    residual_offsets,
+    real_frame_residual,
     walk_observation,
 )
 from behaviors.mirror import mirror_joint_angles, mirror_observation
@@ -126,18 +126,36 @@ def test_the_right_legs_half_cycle_is_seen_and_answered_in_the_mirror():
     assert left.shape == (len(OBS_NAMES),)
     np.testing.assert_allclose(right, mirror_observation(left, OBS_LAYOUT), atol=1e-5)
     residual = rng.uniform(-1, 1, 12) * ACTION_SCALE
-    mirrored = residual_offsets(residual, mirrored=True)
-    plain = residual_offsets(residual, mirrored=False)
+    mirrored = dict(zip(LEG_JOINTS, real_frame_residual(residual, mirrored=True)))
+    plain = dict(zip(LEG_JOINTS, real_frame_residual(residual, mirrored=False)))
     assert mirrored == pytest.approx(mirror_joint_angles(plain))
     assert mirrored != pytest.approx(plain)
+    # the applied offsets are observed in the canonical frame too
+    applied = rng.uniform(-5, 5, 12)
+    left = walk_observation(state, _fake_engine(3, True), command, applied)
+    right = walk_observation(state, _fake_engine(3, False), command, applied)
+    np.testing.assert_allclose(right, mirror_observation(left, OBS_LAYOUT), atol=1e-5)
     # not stepping yet: no mirror, no phase
     still = walk_observation(state, None, command)
     assert list(still[OBS_NAMES.index("phase_sin") :][:3]) == [0.0, 0.0, 0.0]
 
 
-def test_offsets_are_clipped_to_the_residual_bounds():
-    offsets = residual_offsets(np.full(12, 100.0), mirrored=False)
+def test_offsets_are_clipped_to_the_residual_bounds_and_smoothed():
+    offsets = dict(zip(LEG_JOINTS, real_frame_residual(np.full(12, 100.0), mirrored=False)))
     assert offsets["llj3"] == 15.0 and offsets["llj1"] == 5.0 and offsets["rlj6"] == 8.0
+    constant = SimpleNamespace(residual_deg=lambda obs: np.full(12, 4.0))
+    session = Session(SessionConfig(seed=2, beam_noise=False))
+    try:
+        agent = LocalAgent.join(session, "Walkers", 1, 0, beam=(-12.0, 0.0, 0.0))
+        skill = agent.behavior.skill("learned_walk")
+        skill.residual = constant
+        applied = []
+        for _ in range(3):
+            agent.run("learned_walk", 0.0, 0.0, 0.0)
+            applied.append(skill.offsets_deg["llj3"])
+        assert applied == pytest.approx([1.0, 1.75, 2.3125])  # a quarter of the gap a cycle
+    finally:
+        session.close()
 
 
 def test_config_errors_name_the_key():
