@@ -9,16 +9,21 @@ observation and action entries, the action scale, the training config and the gi
 
 from __future__ import annotations
 
+import argparse
+import pickle
 import subprocess
 from collections.abc import Sequence
 from pathlib import Path
 
+import gymnasium as gym
 import numpy as np
+import yaml
 from stable_baselines3 import PPO
 from stable_baselines3.common.torch_layers import FlattenExtractor
 from stable_baselines3.common.vec_env import VecNormalize
 from torch import nn
 
+import learning.envs  # noqa: F401  (registers the environments)
 from behaviors.policy import MlpPolicy
 
 _ACTIVATIONS = {nn.Tanh: "tanh", nn.ReLU: "relu"}
@@ -111,3 +116,41 @@ def export_policy(
     path.parent.mkdir(parents=True, exist_ok=True)
     policy.save(path)
     return MlpPolicy.load(path, obs_names, action_names)
+
+
+def export_checkpoint(run: Path, step: int, out: Path | None = None) -> MlpPolicy:
+    """Export checkpoint ``step`` of training run ``run`` (``checkpoints/model_STEP.zip`` and
+    its normaliser) to ``out`` (default ``run/policy_STEP.npz``): to evaluate a run while it
+    trains, or an earlier checkpoint than its end."""
+    config = yaml.safe_load((run / "config.yaml").read_text())
+    model = PPO.load(run / "checkpoints" / f"model_{step}.zip", device="cpu")
+    with open(run / "checkpoints" / f"vecnormalize_{step}.pkl", "rb") as file:
+        normalizer = pickle.load(file)  # the pickle holds no environment: only the statistics
+    env = gym.make(config["env_id"], config=config.get("env")).unwrapped
+    try:
+        return export_policy(
+            model,
+            normalizer,
+            out or run / f"policy_{step}.npz",
+            env.observation_names,
+            env.action_names,
+            env.action_scale,
+            yaml.safe_dump(config),
+        )
+    finally:
+        env.close()
+
+
+def main(argv: list[str] | None = None) -> None:
+    """``python -m learning.export --run runs/X --step N [--out FILE]``."""
+    parser = argparse.ArgumentParser(description=export_checkpoint.__doc__)
+    parser.add_argument("--run", type=Path, required=True)
+    parser.add_argument("--step", type=int, required=True)
+    parser.add_argument("--out", type=Path)
+    args = parser.parse_args(argv)
+    policy = export_checkpoint(args.run, args.step, args.out)
+    print(f"exported step {args.step}: {policy.n_obs} observations -> {policy.n_actions} actions")
+
+
+if __name__ == "__main__":
+    main()

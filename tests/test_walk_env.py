@@ -28,6 +28,7 @@ from behaviors.mirror import mirror_joint_angles, mirror_observation
 from behaviors.policy import PolicyError
 from learning.envs import WALK_RESIDUAL_ID, WalkEnvConfig, WalkResidualEnv
 from learning.envs.walk import EnvConfigError, measure_speed
+from learning.export import export_checkpoint
 from learning.local_agent import LocalAgent
 from learning.walk_eval import evaluate
 from sim.session import Session, SessionConfig
@@ -187,6 +188,10 @@ def test_a_tiny_training_run_gives_a_policy_the_skill_runs(tmp_path):
     skill = LearnedWalkSkill(residual)
     assert skill.residual is residual
     assert len(_torso_path("learned_walk", 20, residual)) == 20  # it runs in an agent
+    # the last checkpoint exported afterwards is the policy the run exported at its end
+    checkpoint = export_checkpoint(tmp_path / "run", 64)
+    obs = np.random.default_rng(1).normal(size=len(OBS_NAMES))
+    np.testing.assert_allclose(checkpoint.act(obs), residual.policy.act(obs))
     with pytest.raises(PolicyError, match="observation"):  # not a get-up residual
         PolicyResidual.load(tmp_path / "run" / "policy.npz")
 
