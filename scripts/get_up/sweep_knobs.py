@@ -7,6 +7,15 @@ seeds, :func:`benchmarks.get_up.run_trial`), so a variant's figures are exactly 
 benchmark would print with those constants as defaults. A screen: a kept variant is written
 into the module and measured again with the benchmark itself.
 
+Session 8 (on top of FRONT_ABORT_HORIZON_S 0.1: 89 / 83 / 83 / 91 = 346 of 400 at seeds 0 /
+500 / 1000 / 2000), none better: RETRY_AT_ONCE_PITCH_DEG 50 / 70 338 / 335, ABORT_BACK_DEG 45
+345, FRONT_ABORT_BACK_DEG 30 341, ABORT_TILT_DEG 68 / 72 345 / 346, SIT_UP_STALL_FRACTION
+0.5 / 0.7 334 / 345, FRONT_ABORT_FORWARD_DEG 50 336, SHORT_FIRST_FRAME_DEG 35 344,
+FRONT_ABORT_HORIZON_S 0.15 343, ABORT_HORIZON_S 0.05 345; before it (344): both horizons 0.1
+344, RETRY_AT_ONCE_MAX_GYRO_DEG_S 100 / 200 337 / 332. Outcomes are chaotic: ``--trials`` on
+the base's failures predicts little (RETRY_AT_ONCE_PITCH_DEG 50 brought 7 of them up and lost
+8 others), so every candidate needs the full seeds.
+
 Run::
 
     nice -n 5 .venv/bin/python scripts/get_up/sweep_knobs.py --seed 0 --seed 500 \\
