@@ -502,3 +502,13 @@ def test_type0_back_crouch_with_less_hip_flexion_brings_a_benchmark_fall_up(monk
     }
     monkeypatch.setattr(get_up_module, "default_sequences", lambda: common)
     assert not run_trial(0, "back", 517).succeeded
+
+
+def test_a_front_get_up_tipping_back_is_caught_from_its_pitch_rate(monkeypatch):
+    """Benchmark fall type 1 seed 1500 (``--seed 500``, ends on the front): the front get-up
+    tips back in its squat; caught from the pitch predicted 0.1 s ahead, the back get-up that
+    follows has the robot standing within 4 s, caught from the pitch alone it does not."""
+    assert get_up_module.FRONT_ABORT_HORIZON_S > 0
+    assert run_trial(1, "front", 1500).succeeded
+    monkeypatch.setattr(get_up_module, "FRONT_ABORT_HORIZON_S", 0.0)
+    assert not run_trial(1, "front", 1500).succeeded
