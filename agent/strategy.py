@@ -97,8 +97,15 @@ class AttackConfig:
     dribble_start_m: float = 0.25
     #: ... facing the goal within this angle
     dribble_align_deg: float = 25.0
-    #: keep dribbling while the ball stays within this distance of the torso
-    dribble_keep_m: float = 0.7
+    #: keep dribbling while the ball stays within this distance of the torso (also: a player
+    #: this close to a ball that stays put counts as stalled at it). 1.2, not 0.7: an LFDL
+    #: stride pushes the ball up to about 1.3 m ahead, and the dribble follows such a ball at
+    #: its 0.9 m/s (``beyond_reach_speed``), while ``walk`` back to the approach point starts
+    #: from its first step at the 0.65 m/s cap and slows down at the point, long enough for a
+    #: keeper or defender to reach the ball first. 3 v 3, 120 s (benchmarks/match.py
+    #: --players 3 --matches 1 --duration 120 --seed S): S = 1-8 4 goals, 97 falls (0.7: 0
+    #: goals, 123 falls); S = 9-16 3 goals, 97 falls (0 goals, 148 falls)
+    dribble_keep_m: float = 1.2
     #: stop dribbling when the ball is this close to the torso: the robot is over it (it
     #: can no longer see it, and standing on it draws the ball-holding foul)
     dribble_min_m: float = 0.12

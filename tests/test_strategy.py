@@ -90,6 +90,20 @@ def test_behind_the_ball_and_facing_the_goal_it_dribbles_and_keeps_dribbling():
     assert behavior.calls[-1][0] == "walk"
 
 
+def test_a_ball_a_stride_pushed_a_metre_ahead_is_followed_by_the_dribble_not_a_walk():
+    # LFDL strides push the ball up to about 1.3 m ahead; the dribble follows it faster than
+    # a walk back to the approach point (benchmarks/match.py: 0 goals in 16 matches at 0.7)
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    strategy.decide(world(ball=(0.0, 0.0), pose=(-0.3, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+    strategy.decide(world(ball=(1.1, 0.05), pose=(0.0, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+    short = Strategy(StrategyConfig(attack=AttackConfig(dribble_keep_m=0.7)))
+    short.decide(world(ball=(0.0, 0.0), pose=(-0.3, 0.0, 0.0)), behavior)
+    short.decide(world(ball=(1.1, 0.05), pose=(0.0, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][0] == "walk"
+
+
 def test_without_a_dribble_skill_it_kicks_anywhere():
     behavior = RecordingBehavior("walk", "basic_kick")
     Strategy().decide(world(ball=(0.0, 0.0), pose=(-0.3, 0.0, 0.0)), behavior)
