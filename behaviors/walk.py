@@ -121,6 +121,16 @@ class WalkParameters:
     go_to_stop_before_leaving: bool = False
     #: ... and the fastest turn (deg/s) it asks for (``GoToGains.max_turn_deg``)
     go_to_max_turn_deg: float = 120.0
+    #: walking to a target (session 8): while the torso pitches back by more than this
+    #: (degrees, IMU), the forward command is at most ``-go_to_pitch_back_speed`` (m/s): the
+    #: robot steps back under its torso until the pitch is back within
+    #: ``go_to_pitch_back_release_deg``. Why: type 2 pitched back 7-12 deg stopping at a
+    #: target, walked off again towards it, and its landing correction's backward steps
+    #: fought the forward command (which grew as it tipped away from the target) until it fell
+    #: backwards. ``inf`` (the default) is off.
+    go_to_pitch_back_deg: float = math.inf
+    go_to_pitch_back_release_deg: float = 3.0
+    go_to_pitch_back_speed: float = 0.1
     #: how much of the planned torso motion really happens (measured)
     odometry_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
     #: torso drift (m/s, forward and left in the robot frame) while stepping that the step plan
@@ -541,10 +551,13 @@ class WalkSkill(_WalkBase):
         super().__init__()
         self.gains = GoToGains()
         self._arrived = False
+        #: stepping back under a torso pitched back (``go_to_pitch_back_deg``)
+        self._catching = False
 
     def reset(self) -> None:
         super().reset()
         self._arrived = False
+        self._catching = False
 
     def engine_parameters(self, params: WalkParameters) -> WalkParameters:
         """Walking to a target, the heading hold measures against
@@ -568,8 +581,22 @@ class WalkSkill(_WalkBase):
             return False
         px, py = _looked_ahead(engine, pose.x, pose.y, pose.heading_deg)
         vx, vy, vturn = self._velocity(engine, px, py, pose.heading_deg, x, y, heading_deg)
+        vx = self._pitch_guarded(engine, context.world.robot.pitch_deg, vx)
         engine.step(context, vx, vy, vturn)
         return self._arrived and engine.is_stopped
+
+    def _pitch_guarded(self, engine: WalkEngine, pitch_deg: float, vx: float) -> float:
+        """``vx`` capped at a backward step while the torso pitches back
+        (``go_to_pitch_back_deg``; the engine's landing correction lengthens the backward
+        step by the pitch), with hysteresis."""
+        p = engine.params
+        if pitch_deg < -p.go_to_pitch_back_deg:
+            self._catching = True
+        elif pitch_deg > -p.go_to_pitch_back_release_deg:
+            self._catching = False
+        if not self._catching:
+            return vx
+        return min(vx, -p.go_to_pitch_back_speed)
 
     def _velocity(
         self,

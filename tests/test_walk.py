@@ -164,12 +164,39 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
     assert inside.odometry_drift == (0.0, 0.0)
     assert inside.go_to_drift_lookahead_s == 0.0
     assert inside.walk_to_max_speed == 0.75 > own.walk_to_max_speed
-    session_7 = {
+    assert inside.go_to_pitch_back_deg == math.inf
+    own_only = {
         "odometry_drift": own.odometry_drift,
         "go_to_drift_lookahead_s": own.go_to_drift_lookahead_s,
         "walk_to_max_speed": own.walk_to_max_speed,
+        "go_to_pitch_back_deg": own.go_to_pitch_back_deg,
     }
-    assert replace(inside, **session_7) == own  # nothing else differs
+    assert replace(inside, **own_only) == own  # nothing else differs
+
+
+def test_a_pitched_back_torso_holds_the_restart_to_a_backward_step():
+    """Session 8: type 2 fell backwards walking off towards a target with its torso pitched
+    back (its landing correction's backward steps fought the forward command), so while it
+    pitches back more than ``go_to_pitch_back_deg`` the forward command is at most a backward
+    step, until the pitch is back within ``go_to_pitch_back_release_deg``; off (inf) for the
+    other types by default, so their walk is unchanged."""
+    assert walk_parameters(2).go_to_pitch_back_deg < 10.0
+    assert walk_parameters(0).go_to_pitch_back_deg == math.inf
+    skill = WalkSkill()
+    engine = WalkEngine(2, walk_parameters(2))
+    on = engine.params.go_to_pitch_back_deg
+    release = engine.params.go_to_pitch_back_release_deg
+    back = -engine.params.go_to_pitch_back_speed
+    assert skill._pitch_guarded(engine, -on + 0.5, 0.3) == 0.3
+    assert skill._pitch_guarded(engine, -on - 0.5, 0.3) == back
+    assert skill._pitch_guarded(engine, -on - 0.5, -0.4) == -0.4  # already stepping back
+    assert skill._pitch_guarded(engine, -release - 0.5, 0.3) == back  # hysteresis
+    assert skill._pitch_guarded(engine, -release + 0.5, 0.3) == 0.3
+    skill._pitch_guarded(engine, -on - 0.5, 0.3)
+    skill.reset()
+    assert skill._pitch_guarded(engine, -release - 0.5, 0.3) == 0.3
+    off = WalkEngine(0, walk_parameters(0))
+    assert WalkSkill()._pitch_guarded(off, -40.0, 0.3) == 0.3
 
 
 def test_a_walk_skill_pointed_at_another_file_walks_with_its_settings(tmp_path):
