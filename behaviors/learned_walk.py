@@ -34,7 +34,7 @@ import numpy as np
 from behaviors.mirror import ObservationLayout, Segment, mirror_action, mirror_observation
 from behaviors.policy import load_checked_policy
 from behaviors.skill import SkillContext
-from behaviors.walk import WALK_FILE, WalkEngine, _WalkBase
+from behaviors.walk import WALK_FILE, WalkEngine, WalkSkillBase
 from world.robot_state import RobotState
 
 #: The joints the residual moves and observes, in the policy's order (left leg, then right).
@@ -170,7 +170,7 @@ def real_frame_residual(canonical_deg: np.ndarray, mirrored: bool) -> np.ndarray
     return np.clip(values, -ACTION_SCALE, ACTION_SCALE)
 
 
-class LearnedWalkSkill(_WalkBase):
+class LearnedWalkSkill(WalkSkillBase):
     """Walk at (vx, vy) m/s and vturn_deg deg/s (robot frame) with the learned residual;
     finishes, as ``walk_velocity``, only while standing still on a zero command."""
 

@@ -46,6 +46,7 @@ __all__ = [
     "WalkEngine",
     "WalkParameters",
     "WalkSkill",
+    "WalkSkillBase",
     "WalkVelocitySkill",
     "norm_limited",
     "walk_parameters",
@@ -456,8 +457,9 @@ def _inside_another_skill(context: SkillContext) -> bool:
     return len(running) > 1
 
 
-class _WalkBase(Skill):
-    """Shared state of the walking skills: one engine, made for the robot type on first use."""
+class WalkSkillBase(Skill):
+    """Shared state of the walking skills: one engine, made for the robot type on first use.
+    Public so that skills built on the engine elsewhere (``behaviors.learned_walk``) share it."""
 
     def __init__(self) -> None:
         self._engine: WalkEngine | None = None
@@ -501,7 +503,7 @@ class _WalkBase(Skill):
         return self._engine.phase
 
 
-class WalkVelocitySkill(_WalkBase):
+class WalkVelocitySkill(WalkSkillBase):
     """Walk at (vx, vy) m/s and vturn_deg deg/s in the robot frame (x forward, y left); never
     finishes (returns True only while standing still on a zero command)."""
 
@@ -541,7 +543,7 @@ class GoToGains:
     max_turn_deg: float = 120.0
 
 
-class WalkSkill(_WalkBase):
+class WalkSkill(WalkSkillBase):
     """Walk to (x, y) in the team frame, facing heading_deg at the end (None: the direction of
     travel); finished once within 0.1 m (aiming for 0.04) and standing still."""
 
