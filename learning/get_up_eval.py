@@ -33,7 +33,6 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.get_up import GetUpSkill
-from behaviors.manager import Behavior
 from benchmarks.get_up import TrialResult, fall, play_get_up, summary, trial_specs
 from learning.falls import FALL_DIRECTIONS
 from learning.local_agent import LocalAgent
@@ -62,11 +61,9 @@ class SavedFall:
     def replay(self) -> LocalAgent:
         """The session back at the fall's end and a fresh agent with the world model as it
         was (new skills, as a robot whose get_up starts now)."""
-        self.session.restore_state(self.snapshot)
-        agent = LocalAgent(self.session, self.agent, self.robot_type, self.team_name)
-        agent.world = copy.deepcopy(self.world)
-        agent.behavior = Behavior(agent.world, self.robot_type)
-        return agent
+        return LocalAgent.from_snapshot(
+            self.session, self.agent, self.robot_type, self.team_name, self.snapshot, self.world
+        )
 
 
 def saved_falls(

@@ -42,7 +42,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.get_up import GetUpSkill
 from behaviors.keyframes import KeyframeSequence, default_sequences, parse_sequences
-from behaviors.manager import Behavior
 from behaviors.mirror import MIRROR_TABLE
 from behaviors.poses import DATA_DIR
 from learning.falls import join_at_random_spot, knock_over
@@ -83,10 +82,9 @@ class FallBank:
         """Put the session back to lying state ``index``: a fresh agent (the world model as it
         was then, new skills) and its ``get_up`` skill (with the packaged residual, if any)."""
         state = self.states[index]
-        self.session.restore_state(state.snapshot)
-        agent = LocalAgent(self.session, self.agent, self.robot_type, self.team_name)
-        agent.world = copy.deepcopy(state.world)
-        agent.behavior = Behavior(agent.world, self.robot_type)
+        agent = LocalAgent.from_snapshot(
+            self.session, self.agent, self.robot_type, self.team_name, state.snapshot, state.world
+        )
         skill = agent.behavior.skill("get_up")
         assert isinstance(skill, GetUpSkill)
         return agent, skill
@@ -144,10 +142,9 @@ def make_bank(
     while len(states) < count and attempts < tries_per_fall * count:
         direction = directions[attempts % len(directions)]
         attempts += 1
-        session.restore_state(standing)
-        driver = LocalAgent(session, driver.agent, robot_type, "Fallers")
-        driver.world = copy.deepcopy(standing_world)
-        driver.behavior = Behavior(driver.world, robot_type)
+        driver = LocalAgent.from_snapshot(
+            session, driver.agent, robot_type, "Fallers", standing, standing_world
+        )
         if not knock_over(driver, direction, rng):
             continue
         driver.perceive()

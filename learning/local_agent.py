@@ -10,12 +10,13 @@ never for the skills.
 
 from __future__ import annotations
 
+import copy
 import math
 
 import behaviors  # noqa: F401  (registers the built-in skills)
 from behaviors.manager import Behavior
 from sim.robot import SimRobot
-from sim.session import Session
+from sim.session import Session, SessionSnapshot
 from world.effectors import EffectorMessage, write_effectors
 from world.perception import parse_perception
 from world.world_model import WorldModel
@@ -57,6 +58,27 @@ class LocalAgent:
         """Connect a robot (scene, init, optional beam) through the same bytes as a client."""
         agent = session.join(team_name, unum, robot_type, beam=beam, settle_cycles=settle_cycles)
         return cls(session, agent, robot_type, team_name)
+
+    @classmethod
+    def from_snapshot(
+        cls,
+        session: Session,
+        agent: int,
+        robot_type: int,
+        team_name: str | None,
+        snapshot: SessionSnapshot,
+        world: WorldModel,
+    ) -> LocalAgent:
+        """Put ``session`` back to ``snapshot`` (``Session.save_state``) and return agent
+        ``agent`` with a copy of ``world`` (its world model saved with the snapshot) and new
+        skills, as a robot whose behaviour starts now: how fall banks, saved benchmark falls
+        and training episodes start again from a saved moment (a restored fall continues
+        exactly as the original: tests/test_get_up_env.py)."""
+        session.restore_state(snapshot)
+        local = cls(session, agent, robot_type, team_name)
+        local.world = copy.deepcopy(world)
+        local.behavior = Behavior(local.world, robot_type)
+        return local
 
     # ------------------------------------------------------------------ the loop
     @property

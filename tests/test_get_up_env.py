@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
 
-from behaviors.manager import Behavior
 from learning.envs import GET_UP_RESIDUAL_ID, GetUpEnvConfig, GetUpResidualEnv
 from learning.envs.get_up import EnvConfigError, measure_speed
 from learning.falls import join_at_random_spot, knock_over
@@ -73,10 +72,7 @@ def test_a_restored_fall_continues_exactly():
         snapshot, world = session.save_state(), copy.deepcopy(driver.world)
 
         def continue_from_snapshot() -> list[tuple[float, ...]]:
-            session.restore_state(snapshot)
-            agent = LocalAgent(session, driver.agent, 2, "Fallers")
-            agent.world = copy.deepcopy(world)
-            agent.behavior = Behavior(agent.world, 2)
+            agent = LocalAgent.from_snapshot(session, driver.agent, 2, "Fallers", snapshot, world)
             path = []
             for _ in range(60):
                 agent.run("get_up")

@@ -38,7 +38,6 @@ from gymnasium import spaces
 
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.learned_walk import ACTION_SCALE, LEG_JOINTS, OBS_NAMES, LearnedWalkSkill
-from behaviors.manager import Behavior
 from learning.envs.config import (
     EnvConfigError,
     check_robot_types,
@@ -184,10 +183,14 @@ class WalkResidualEnv(gym.Env):
             config = self.config
             robot_type = draw_robot_type(self.np_random, config.robot_types, config.type_weights)
         standing = self.standing(int(robot_type))
-        standing.session.restore_state(standing.snapshot)
-        agent = LocalAgent(standing.session, standing.agent, int(robot_type), "Walkers")
-        agent.world = copy.deepcopy(standing.world)
-        agent.behavior = Behavior(agent.world, int(robot_type))
+        agent = LocalAgent.from_snapshot(
+            standing.session,
+            standing.agent,
+            int(robot_type),
+            "Walkers",
+            standing.snapshot,
+            standing.world,
+        )
         skill = agent.behavior.skill("learned_walk")
         assert isinstance(skill, LearnedWalkSkill)
         skill.residual = self._held
