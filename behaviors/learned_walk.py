@@ -206,10 +206,9 @@ class LearnedWalkSkill(WalkSkillBase):
         command = (vx, vy, vturn_deg)
         offsets = None
         if self.residual is not None:
-            phase = self._engine.phase if self._engine is not None else (-1, False)
             observation = self.observe(context.world.robot, command)
             wanted = real_frame_residual(
-                self.residual.residual_deg(observation), is_mirrored(phase)
+                self.residual.residual_deg(observation), is_mirrored(self.phase)
             )
             self._offsets = self._offsets + RESIDUAL_SMOOTHING * (wanted - self._offsets)
             offsets = self.offsets_deg

@@ -15,6 +15,7 @@ from learning.envs.get_up import EnvConfigError, measure_speed
 from learning.falls import join_at_random_spot, knock_over
 from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
+from tests.env_rollout import rollout
 
 SMALL = {"robot_types": [1], "falls_per_type": 3, "bank_seed": 7}
 
@@ -24,17 +25,6 @@ def env():
     environment = GetUpResidualEnv(SMALL)
     yield environment
     environment.close()
-
-
-def _rollout(env: GetUpResidualEnv, seed: int, actions: np.ndarray) -> list[tuple]:
-    obs, _ = env.reset(seed=seed)
-    out = [(obs.tobytes(),)]
-    for action in actions:
-        obs, reward, terminated, truncated, _ = env.step(action)
-        out.append((obs.tobytes(), reward, terminated, truncated))
-        if terminated or truncated:
-            break
-    return out
 
 
 def test_check_env_passes(env):
@@ -51,12 +41,12 @@ def test_registered_with_gymnasium():
 
 def test_reset_with_a_seed_is_reproducible(env):
     actions = np.random.default_rng(3).uniform(-1, 1, size=(40, 5)).astype(np.float32)
-    first = _rollout(env, 11, actions)
+    first = rollout(env, 11, actions)
     assert len(first) > 5
-    assert _rollout(env, 11, actions) == first
+    assert rollout(env, 11, actions) == first
     other = GetUpResidualEnv(SMALL)
     try:
-        assert _rollout(other, 11, actions) == first  # a fresh env builds the same bank
+        assert rollout(other, 11, actions) == first  # a fresh env builds the same bank
     finally:
         other.close()
 

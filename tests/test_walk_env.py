@@ -32,6 +32,7 @@ from learning.export import export_checkpoint
 from learning.local_agent import LocalAgent
 from learning.walk_eval import evaluate
 from sim.session import Session, SessionConfig
+from tests.env_rollout import rollout
 from world.robot_state import RobotState
 
 SMALL = {"robot_types": [0], "episode_s": 1.0, "command_every_s": 0.5}
@@ -42,17 +43,6 @@ def env():
     environment = WalkResidualEnv(SMALL)
     yield environment
     environment.close()
-
-
-def _rollout(env: WalkResidualEnv, seed: int, actions: np.ndarray) -> list[tuple]:
-    obs, _ = env.reset(seed=seed)
-    out = [(obs.tobytes(),)]
-    for action in actions:
-        obs, reward, terminated, truncated, _ = env.step(action)
-        out.append((obs.tobytes(), reward, terminated, truncated))
-        if terminated or truncated:
-            break
-    return out
 
 
 def test_check_env_passes(env):
@@ -69,9 +59,9 @@ def test_registered_with_gymnasium():
 
 def test_reset_with_a_seed_is_reproducible_and_commands_change(env):
     actions = np.random.default_rng(3).uniform(-0.3, 0.3, size=(60, 12)).astype(np.float32)
-    first = _rollout(env, 11, actions)
+    first = rollout(env, 11, actions)
     assert len(first) == 51  # 1 s: truncated after 50 cycles
-    assert _rollout(env, 11, actions) == first
+    assert rollout(env, 11, actions) == first
     env.reset(seed=11)
     commands = {env._episode.command}
     for _ in range(30):

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import gymnasium as gym
@@ -43,8 +43,9 @@ from behaviors.get_up import (
     GetUpSkill,
 )
 from behaviors.joint_control import CYCLE_SECONDS
-from learning.envs.config import (
+from learning.envs.common import (
     EnvConfigError,
+    HeldResidual,
     check_robot_types,
     draw_robot_type,
     env_config_from_mapping,
@@ -92,19 +93,8 @@ class GetUpEnvConfig:
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any] | None, where: str = "env") -> GetUpEnvConfig:
-        """Build from a YAML mapping (:func:`learning.envs.config.env_config_from_mapping`)."""
+        """Build from a YAML mapping (:func:`learning.envs.common.env_config_from_mapping`)."""
         return env_config_from_mapping(cls, data, where)
-
-
-@dataclass
-class _HeldAction:
-    """The skill's residual source inside the environment: the action of the current step
-    (degrees per residual action). Zero outside the policy's steps."""
-
-    residual: np.ndarray = field(default_factory=lambda: np.zeros(len(ACTION_NAMES)))
-
-    def residual_deg(self, observation: np.ndarray) -> np.ndarray:
-        return self.residual
 
 
 @dataclass
@@ -143,7 +133,7 @@ class GetUpResidualEnv(gym.Env):
         )
         self.action_space = spaces.Box(-1.0, 1.0, shape=(len(ACTION_NAMES),), dtype=np.float32)
         self._banks: dict[int, FallBank] = {}
-        self._held = _HeldAction()
+        self._held = HeldResidual(len(ACTION_NAMES))
         self._episode: _Episode | None = None
         self._limit_cycles = round(config.time_limit_s / CYCLE_SECONDS)
 
@@ -199,11 +189,11 @@ class GetUpResidualEnv(gym.Env):
             obs = episode.skill.observe(episode.agent.state)
             return obs, reward, not truncated, truncated, self._info(info, episode)
         raw = np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0)
-        self._held.residual = raw * ACTION_SCALE
+        self._held.hold(raw * ACTION_SCALE)
         reward = -self.config.action_penalty * float(np.mean(raw**2))
         gained, done, info = self._cycle()
         reward += gained
-        self._held.residual = np.zeros(len(ACTION_NAMES))
+        self._held.release()
         if not done:
             more, done, info = self._advance()
             reward += more

@@ -38,8 +38,9 @@ from gymnasium import spaces
 
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.learned_walk import ACTION_SCALE, LEG_JOINTS, OBS_NAMES, LearnedWalkSkill
-from learning.envs.config import (
+from learning.envs.common import (
     EnvConfigError,
+    HeldResidual,
     check_robot_types,
     draw_robot_type,
     env_config_from_mapping,
@@ -99,18 +100,8 @@ class WalkEnvConfig:
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any] | None, where: str = "env") -> WalkEnvConfig:
-        """Build from a YAML mapping (:func:`learning.envs.config.env_config_from_mapping`)."""
+        """Build from a YAML mapping (:func:`learning.envs.common.env_config_from_mapping`)."""
         return env_config_from_mapping(cls, data, where)
-
-
-@dataclass
-class _HeldAction:
-    """The skill's residual source inside the environment: this step's action (deg)."""
-
-    residual: np.ndarray = field(default_factory=lambda: np.zeros(len(LEG_JOINTS)))
-
-    def residual_deg(self, observation: np.ndarray) -> np.ndarray:
-        return self.residual
 
 
 @dataclass
@@ -152,7 +143,7 @@ class WalkResidualEnv(gym.Env):
         self.observation_space = spaces.Box(-1e4, 1e4, shape=(len(OBS_NAMES),), dtype=np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, shape=(len(LEG_JOINTS),), dtype=np.float32)
         self._standing: dict[int, _Standing] = {}
-        self._held = _HeldAction()
+        self._held = HeldResidual(len(LEG_JOINTS))
         self._episode: _Episode | None = None
         self._fixed_command: tuple[float, float, float] | None = None
         self._limit_cycles = round(config.episode_s / CYCLE_SECONDS)
@@ -200,7 +191,7 @@ class WalkResidualEnv(gym.Env):
         episode.command = self._fixed_command or self._draw_command()
         episode.poses.append(self._ground_pose(agent))
         self._episode = episode
-        return skill.observe(agent.state, episode.command), self._info(episode)
+        return skill.observe(agent.state, episode.command), self._info(episode, (0.0, 0.0, 0.0))
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         episode = self._episode
@@ -208,15 +199,17 @@ class WalkResidualEnv(gym.Env):
             raise RuntimeError("step() before reset(), or after the episode ended")
         config = self.config
         raw = np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0)
-        self._held.residual = raw * ACTION_SCALE
+        self._held.hold(raw * ACTION_SCALE)
         agent = episode.agent
         agent.decide("learned_walk", *episode.command)
         agent.session.step()
         agent.perceive()
-        self._held.residual = np.zeros(len(LEG_JOINTS))
+        self._held.release()
         episode.cycles += 1
         episode.poses.append(self._ground_pose(agent))
-        reward = self._tracking_reward(episode) - config.action_penalty * float(np.mean(raw**2))
+        velocity = self.measured_velocity(episode.poses)
+        reward = self._tracking_reward(velocity, episode.command)
+        reward -= config.action_penalty * float(np.mean(raw**2))
         fell = self._fallen(agent)
         if fell:
             reward -= config.fall_penalty
@@ -224,7 +217,7 @@ class WalkResidualEnv(gym.Env):
         if not fell and episode.cycles % self._command_cycles == 0 and not self._fixed_command:
             episode.command = self._draw_command()
         obs = episode.skill.observe(agent.state, episode.command)
-        info = self._info(episode)
+        info = self._info(episode, velocity)
         if fell or truncated:
             info["fell"] = fell
             self._episode = None
@@ -259,10 +252,12 @@ class WalkResidualEnv(gym.Env):
         turn = ((h1 - h0 + 180.0) % 360.0 - 180.0) / seconds
         return (c * dx + s * dy) / seconds, (-s * dx + c * dy) / seconds, turn
 
-    def _tracking_reward(self, episode: _Episode) -> float:
+    def _tracking_reward(
+        self, velocity: tuple[float, float, float], command: tuple[float, float, float]
+    ) -> float:
         config = self.config
-        vx, vy, turn = self.measured_velocity(episode.poses)
-        cx, cy, cturn = episode.command
+        vx, vy, turn = velocity
+        cx, cy, cturn = command
         speed_error = math.hypot(vx - cx, vy - cy) / config.speed_sigma
         turn_error = (turn - cturn) / config.turn_sigma_deg
         return math.exp(-(speed_error**2)) + config.turn_weight * math.exp(-(turn_error**2))
@@ -271,13 +266,14 @@ class WalkResidualEnv(gym.Env):
     def _fallen(agent: LocalAgent) -> bool:
         return bool(agent.robot.torso_up()[2] < math.cos(math.radians(FALL_TILT_DEG)))
 
-    def _info(self, episode: _Episode) -> dict[str, Any]:
-        vx, vy, turn = self.measured_velocity(episode.poses)
+    @staticmethod
+    def _info(episode: _Episode, velocity: tuple[float, float, float]) -> dict[str, Any]:
+        """What a step reports: the command of the next step and the velocity just measured."""
         return {
             "robot_type": episode.robot_type,
             "command": episode.command,
             "seconds": episode.cycles * CYCLE_SECONDS,
-            "velocity": (vx, vy, turn),
+            "velocity": velocity,
         }
 
     def close(self) -> None:

@@ -1,5 +1,6 @@
-"""What every environment config shares: the robot types it trains on (with weights), its
-errors, and reading it from a training config's ``env:`` block."""
+"""What the residual-learning environments share: their configs' robot types (with weights),
+errors and reading from a training config's ``env:`` block; the residual the policy's action
+hands to the skill; and timing an environment."""
 
 from __future__ import annotations
 
@@ -71,3 +72,22 @@ def zero_action_speed(
             endings.append((bool(terminated), info))
             env.reset()
     return steps / (time.monotonic() - start), endings
+
+
+class HeldResidual:
+    """A skill's residual source inside a training environment: the offsets of the step under
+    way (the skill's units, set by the environment from the policy's action), zero between
+    steps. The skill's observation is the environment's to hand out, so it is ignored here."""
+
+    def __init__(self, size: int) -> None:
+        self.residual = np.zeros(size)
+
+    def hold(self, residual: np.ndarray) -> None:
+        """Act with ``residual`` until :meth:`release`."""
+        self.residual = residual
+
+    def release(self) -> None:
+        self.residual = np.zeros_like(self.residual)
+
+    def residual_deg(self, observation: np.ndarray) -> np.ndarray:
+        return self.residual
