@@ -47,7 +47,7 @@ from behaviors.keyframes import (
     default_sequences,
     mirrored,
 )
-from behaviors.policy import MlpPolicy
+from behaviors.policy import MlpPolicy, load_checked_policy
 from behaviors.poses import (
     DATA_DIR,
     PoseError,
@@ -303,14 +303,8 @@ class PolicyResidual:
     @classmethod
     def load(cls, path: Path) -> PolicyResidual:
         """Load a policy file, checking it takes this observation and gives these actions."""
-        policy = MlpPolicy.load(path, RESIDUAL_OBS_NAMES, tuple(RESIDUAL_ACTIONS))
-        expected = np.array([RESIDUAL_MAX_DEG[name] for name in RESIDUAL_ACTIONS])
-        if not np.allclose(policy.action_scale, expected):
-            raise ValueError(
-                f"{path}: action scale {policy.action_scale.tolist()} is not this skill's "
-                f"RESIDUAL_MAX_DEG {expected.tolist()}"
-            )
-        return cls(policy)
+        scale = [RESIDUAL_MAX_DEG[name] for name in RESIDUAL_ACTIONS]
+        return cls(load_checked_policy(path, RESIDUAL_OBS_NAMES, tuple(RESIDUAL_ACTIONS), scale))
 
     def residual_deg(self, observation: np.ndarray) -> np.ndarray:
         return self.policy.act(observation)
