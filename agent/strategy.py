@@ -104,7 +104,8 @@ class AttackConfig:
     #: from its first step at the 0.65 m/s cap and slows down at the point, long enough for a
     #: keeper or defender to reach the ball first. 3 v 3, 120 s (benchmarks/match.py
     #: --players 3 --matches 1 --duration 120 --seed S): S = 1-8 4 goals, 97 falls (0.7: 0
-    #: goals, 123 falls); S = 9-16 3 goals, 97 falls (0 goals, 148 falls)
+    #: goals, 123 falls); S = 9-16 3 goals, 97 falls (0 goals, 148 falls); after session 8's
+    #: walk change for type 2 was merged: 1 and 4 goals, 92 and 93 falls
     dribble_keep_m: float = 1.2
     #: stop dribbling when the ball is this close to the torso: the robot is over it (it
     #: can no longer see it, and standing on it draws the ball-holding foul)

@@ -179,9 +179,7 @@ class ProgressLog(BaseCallback):
             self.episodes += 1
             self.returns.append(self._running)
             self.lengths.append(self._steps_in_episode)
-            # get-up episodes report success; walk episodes report a fall (success: none)
-            success = info["success"] if "success" in info else not info.get("fell", False)
-            self.successes.append(float(success))
+            self.successes.append(float(info.get("success", False)))
             self._running = 0.0
             self._steps_in_episode = 0
         if self.num_timesteps >= self._next:

@@ -219,7 +219,8 @@ class WalkResidualEnv(gym.Env):
         obs = episode.skill.observe(agent.state, episode.command)
         info = self._info(episode, velocity)
         if fell or truncated:
-            info["fell"] = fell
+            # an episode succeeds when it ends on its feet (the training log's success rate)
+            info.update(fell=fell, success=not fell)
             self._episode = None
         return obs, reward, fell, truncated, info
 
