@@ -8,6 +8,13 @@ decimetres) in a short message, and the player with the lowest recent claim goes
 Message format (``say``, at most 20 printable characters without spaces or parentheses):
 ``nb<unum>c<decimetres>``, e.g. ``nb7c42``: player 7 is 4.2 m from the ball. Messages of the
 other team are ignored (the hear perceptor names the speaker's team).
+
+Players take turns to speak (:func:`my_turn_to_speak`). The real server lets a listener hear at
+most one teammate message per cycle, the first one said, and after hearing one it is deaf to its
+team for a cycle (``sim.hearing`` has the rules): if everybody spoke every cycle, everybody
+would hear only the player the server lists first. So a team speaks every second cycle, one
+player per turn in uniform-number order: each player is heard every 22 cycles (0.44 s), well
+within :data:`CLAIM_MEMORY_S`.
 """
 
 from __future__ import annotations
@@ -20,6 +27,13 @@ CLAIM_MEMORY_S = 1.0
 #: Largest claim that fits the message (decimetres).
 MAX_CLAIM_DM = 9999
 
+#: Cycles between two messages of the team: a listener's capacity needs two to recover.
+TURN_CYCLES = 2
+#: Uniform numbers that take turns (a full team; the turns of absent players stay silent).
+TEAM_SIZE = 11
+#: Length of a server cycle (s): the turns count cycles of the server's clock.
+CYCLE_S = 0.02
+
 _CLAIM = re.compile(r"^nb(\d{1,2})c(\d{1,4})$")
 
 
@@ -27,6 +41,15 @@ def claim_message(unum: int, claim_m: float) -> str:
     """The ``say`` text for player ``unum`` claiming ``claim_m`` metres."""
     decimetres = min(MAX_CLAIM_DM, max(0, round(claim_m * 10.0)))
     return f"nb{unum}c{decimetres}"
+
+
+def my_turn_to_speak(unum: int, server_time: float) -> bool:
+    """Whether player ``unum`` may speak in the cycle of the perception stamped
+    ``server_time``: every player of the team computes the same turns from the shared clock."""
+    cycle = round(server_time / CYCLE_S)
+    if cycle % TURN_CYCLES:
+        return False
+    return (cycle // TURN_CYCLES) % TEAM_SIZE == (unum - 1) % TEAM_SIZE
 
 
 def parse_claim(message: str) -> tuple[int, float] | None:

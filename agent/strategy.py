@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from agent.attack_keeper import aim_point, contested, detour_point, open_side
-from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
+from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from behaviors.basic_kick import expected_ball_ego
 from behaviors.kick import FEET, kick_motion
 from world.field_geometry import GOAL_WIDTH, HALF_LENGTH, HALF_WIDTH
@@ -466,8 +466,16 @@ class Strategy:
             self._support(world, behavior)
         else:
             self._hold_position(world, behavior)
-        say = None if claim is None or world.unum is None else claim_message(world.unum, claim)
-        return Decision(beam=beam, say=say)
+        return Decision(beam=beam, say=self._say(world, claim))
+
+    @staticmethod
+    def _say(world, claim: float | None) -> str | None:
+        """The claim, said in this player's turn only (see :mod:`agent.roles`)."""
+        if claim is None or world.unum is None or world.time is None:
+            return None
+        if not my_turn_to_speak(world.unum, world.time):
+            return None
+        return claim_message(world.unum, claim)
 
     # ------------------------------------------------------------------ roles
     def home(self, unum: int | None) -> tuple[float, float]:

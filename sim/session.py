@@ -23,6 +23,7 @@ import numpy as np
 
 from sim.contact_models import CONTACT_MODELS, contact_physics
 from sim.field import DEFAULT_SUBSTEPS, Ball, build_field
+from sim.hearing import Ear, Listener, broadcast
 from sim.monitor import (
     DropBall,
     KickOff,
@@ -49,8 +50,7 @@ from sim.scene_graph import MonitorHeader, SceneGraph
 from sim.vision import VisibleRobot, VisionSensor
 from world.effectors import EffectorMessage, parse_effectors
 from world.field_geometry import BALL_RADIUS
-from world.localization import wrap_deg
-from world.perception import GameState, Heard, Perception, Vision, write_perception
+from world.perception import GameState, Perception, Vision, write_perception
 from world.yaml_config import load_yaml_config
 
 log = logging.getLogger(__name__)
@@ -62,7 +62,6 @@ BEAM_HEIGHT = 0.4
 #: Parts of a robot that other robots' vision reports.
 VISIBLE_PARTS = ("head", "rlowerarm", "llowerarm", "rfoot", "lfoot")
 MAX_SAY_LENGTH = 20
-HEAR_DISTANCE = 50.0
 #: Substeps of an ordinary cycle: the robot stands and matches the real server's motions
 #: (benchmarks/fidelity.py) at 2; at 1 it is unstable.
 BASE_SUBSTEPS = 2
@@ -129,6 +128,8 @@ class AgentSlot:
     staged: list[EffectorMessage] = field(default_factory=list)
     announce_identity: bool = False
     perception_bytes: bytes | None = None
+    #: hearing capacity and messages waiting for the next perception (sim.hearing)
+    ear: Ear = field(default_factory=Ear)
 
     @property
     def robot_id(self) -> str:
@@ -259,8 +260,20 @@ class Session:
         ``perceive=False`` skips writing perception messages (for benchmarks and for
         fast-forwarding a scripted part where nobody reads them).
         """
+        self.advance(perceive)
+        self.stage_answers()
+
+    def advance(self, perceive: bool = True) -> None:
+        """The physics half of :meth:`step`: apply the staged effectors, simulate the cycle,
+        judge it and write the perceptions, without touching the answers received since.
+
+        The answers to a perception reach the motors only a cycle later (``staged``), so this
+        does not depend on them: a server may run it while the agents still think about the
+        previous perception, then call :meth:`stage_answers` once every answer is in.
+        """
         for slot in list(self.agents.values()):
             self._apply_staged(slot)
+        self._broadcast_said()
         self._apply_trainer_commands()
         self.world.step_cycle(self._substeps_for_cycle())
         self.time = round(self.time + CYCLE_SECONDS, 10)
@@ -269,13 +282,11 @@ class Session:
         for slot in robots:
             slot.robot.update_sensors()
         self._run_referee(robots)
-        heard = self._said
-        self._said = []
         if not perceive:
             return
         seen_by_all = _LazyVisibleRobots(robots)
         for slot in robots:
-            slot.perception_bytes = self._perceive(slot, seen_by_all, heard)
+            slot.perception_bytes = self._perceive(slot, seen_by_all)
 
     def _substeps_for_cycle(self) -> int:
         """Adaptive substepping: a foot may not jump over the ball within one substep.
@@ -330,7 +341,6 @@ class Session:
                 "time": self.time,
                 "cycle": self.cycle,
                 "trainer": self._trainer_queue,
-                "said": [(s.agent_id, m) for s, m in self._said],
                 "agents": {aid: _slot_state(s) for aid, s in self.agents.items()},
                 "robots": {
                     aid: s.robot.python_state() for aid, s in self.agents.items() if s.robot
@@ -352,7 +362,6 @@ class Session:
         self.time = state["time"]
         self.cycle = state["cycle"]
         self._trainer_queue = state["trainer"]
-        self._said = [(self.agents[aid], m) for aid, m in state["said"]]
         for aid, slot_state in state["agents"].items():
             slot = self.agents[aid]
             for name, value in slot_state.items():
@@ -407,8 +416,12 @@ class Session:
                 slot.robot.set_joint_speeds(message.joint_speeds)
             if message.say is not None:
                 self._say(slot, message.say)
-        slot.staged = slot.pending
-        slot.pending = []
+        slot.staged = []
+
+    def stage_answers(self) -> None:
+        """The effector messages received since the last cycle wait for the next one."""
+        for slot in self.agents.values():
+            slot.staged, slot.pending = slot.pending, []
 
     def _init_agent(self, slot: AgentSlot, unum: int, team_name: str) -> None:
         if slot.side is not None:
@@ -535,9 +548,7 @@ class Session:
             (s.side, s.unum) for s in robots if s.side is not None and s.robot.body_id in touching
         ]
 
-    def _perceive(
-        self, slot: AgentSlot, visible: _LazyVisibleRobots, heard: list[tuple[AgentSlot, str]]
-    ) -> bytes:
+    def _perceive(self, slot: AgentSlot, visible: _LazyVisibleRobots) -> bytes:
         robot = slot.robot
         game_state = GameState(
             game_time=self.referee.game_time,
@@ -555,7 +566,7 @@ class Session:
             accelerometer=robot.accelerometer(),
             joints=robot.joint_angles_deg(),
             force_resistance=robot.force_resistance(),
-            heard=self._hearing(slot, heard),
+            heard=slot.ear.take(slot.team_name or "", self.referee.game_time),
         )
         if slot.perceptions_sent % self.config.see_interval == 0:
             perception.vision = self._see(slot, visible)
@@ -568,26 +579,24 @@ class Session:
             slot.robot.camera_world_transform(), self.ball.position(), others, visible[slot]
         )
 
-    def _hearing(self, slot: AgentSlot, heard: list[tuple[AgentSlot, str]]) -> list[Heard]:
-        result = []
-        if not heard or slot.team_name is None:
-            return result
-        position = np.asarray(slot.robot.torso_position())
-        for speaker, message in heard:
-            if speaker.robot is None:
-                continue
-            if speaker is slot:
-                direction: str | float = "self"
-            else:
-                offset = np.asarray(speaker.robot.torso_position()) - position
-                if math.hypot(offset[0], offset[1]) > HEAR_DISTANCE:
-                    continue
-                bearing = math.degrees(math.atan2(offset[1], offset[0]))
-                direction = wrap_deg(bearing - slot.robot.torso_yaw_deg())
-            result.append(
-                Heard(speaker.team_name or "", self.referee.game_time, direction, message)
-            )
-        return result
+    def _broadcast_said(self) -> None:
+        """Deliver the ``say`` messages applied this cycle under the real server's hearing
+        rules (:mod:`sim.hearing`), from the speakers' positions before the physics step."""
+        said, self._said = self._said, []
+        if not said:
+            return
+        listeners = {
+            slot.agent_id: self._listener(slot)
+            for slot in self.agents.values()
+            if slot.robot is not None and slot.team_name is not None and slot.side is not None
+        }
+        speakers = [(listeners[s.agent_id], m) for s, m in said if s.agent_id in listeners]
+        broadcast(speakers, list(listeners.values()))
+
+    @staticmethod
+    def _listener(slot: AgentSlot) -> Listener:
+        x, y, _ = slot.robot.torso_position()
+        return Listener(slot.ear, slot.team_name or "", slot.side or "", x, y)
 
     def _monitor_header(self) -> MonitorHeader:
         """The monitor's header; the rule settings come from the referee actually in use, so
@@ -648,6 +657,7 @@ def _slot_state(slot: AgentSlot) -> dict:
         "staged": slot.staged,
         "announce_identity": slot.announce_identity,
         "perception_bytes": slot.perception_bytes,
+        "ear": slot.ear,
     }
 
 

@@ -197,7 +197,23 @@ def test_say_is_heard_by_the_speaker_and_by_others(session):
             for h in parse_perception(session.perception(agent)).heard:
                 heard[agent] = h
     assert heard[speaker].direction == "self" and heard[speaker].message == "hello42"
-    assert heard[listener].team == "Alpha" and isinstance(heard[listener].direction, float)
+    assert heard[listener].team == "Alpha"
+    # the direction is in the listener's own team frame, not relative to where it faces: the
+    # speaker (Alpha, world -2, 0) stands at (2, 0) in Beta's frame, the listener at (-4, 2)
+    assert heard[listener].direction == pytest.approx(math.degrees(math.atan2(-2, 6)), abs=2)
+
+
+def test_only_the_first_teammate_message_of_a_cycle_is_heard(session):
+    first = _join(session, "Alpha", 1)
+    second = _join(session, "Alpha", 2, beam=(-3.0, 1.0, 0.0))
+    listener = _join(session, "Alpha", 3, beam=(-4.0, 2.0, 0.0))
+    session.handle_message(first, b"(say one)(syn)")
+    session.handle_message(second, b"(say two)(syn)")
+    texts = []
+    for _ in range(3):
+        session.step()
+        texts += [h.message for h in parse_perception(session.perception(listener)).heard]
+    assert texts == ["one"]
 
 
 def test_right_team_beams_into_its_own_half_facing_the_left_goal(session):

@@ -3,13 +3,14 @@ which skill it picks where, and the claims players say to settle who goes."""
 
 from __future__ import annotations
 
+import itertools
 import math
 from types import SimpleNamespace
 
 import pytest
 
 from agent.attack_keeper import detour_point, open_side
-from agent.roles import ClaimBoard, claim_message, is_closest, parse_claim
+from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from agent.strategy import (
     AttackConfig,
     HoldWatch,
@@ -549,3 +550,25 @@ def test_no_snap_shot_off_the_spot_facing_past_the_post_far_from_goal_or_by_defa
     assert snapper.snap_foot(_snap_world(ball, turned)) is None
     # 6 m from goal: too far for the stand kick's 1.7-2.7 m
     assert snapper.snap_foot(_snap_world((9.0 + ahead, left), (9.0, 0.0, 0.0))) is None
+
+
+def test_players_take_turns_to_speak_so_every_claim_is_heard():
+    # the real server's hearing (sim.hearing): one teammate message per cycle reaches a
+    # listener, then it is deaf to its team for a cycle
+    speakers = []
+    for cycle in range(1000, 1044):
+        speaking = [u for u in range(1, 12) if my_turn_to_speak(u, cycle * 0.02)]
+        assert len(speaking) <= 1
+        speakers.append(speaking[0] if speaking else None)
+    assert all(a is None or b is None for a, b in itertools.pairwise(speakers))
+    assert sorted(s for s in speakers if s is not None) == sorted(list(range(1, 12)) * 2)
+    # the strategy says its claim in its turn only
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    said_at = []
+    for cycle in range(1000, 1022):
+        now = world((0.0, 0.0), (-2.0, 0.0, 0.0))
+        now.time = cycle * 0.02
+        decision = strategy.decide(now, behavior)
+        if decision.say is not None:
+            said_at.append(cycle)
+    assert len(said_at) == 1 and my_turn_to_speak(9, said_at[0] * 0.02)
