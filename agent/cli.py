@@ -16,6 +16,7 @@ from collections.abc import Sequence
 SERVER_EXAMPLES = """examples:
   naosoccer server                      real-time server on 127.0.0.1:3100 (monitor 3200)
   naosoccer server --sync --seed 7      wait for every agent's (syn), as fast as possible
+  naosoccer server --sync --pipeline    the same, physics overlapping the agents' thinking
   naosoccer server --host 0.0.0.0 --port 3100 --monitor-port 3200 --config config/server.yaml
 """
 
@@ -194,6 +195,12 @@ def _add_server_options(parser: argparse.ArgumentParser) -> None:
     pacing.add_argument(
         "--real-time", action="store_true", help="50 cycles per second (the default)"
     )
+    parser.add_argument(
+        "--pipeline",
+        action="store_true",
+        help="simulate the next cycle while the agents think (the same game; agents in other "
+        "processes then use another core; trainer commands act a cycle later)",
+    )
     parser.add_argument("--seed", type=int, default=0, help="seed for all simulator noise")
     parser.add_argument("--config", help="server settings (YAML), e.g. config/server.yaml")
 
@@ -211,7 +218,9 @@ def _run_server(args: argparse.Namespace) -> int:
     from sim.server import SoccerServer
 
     session = _make_session(args.seed, args.config)
-    server = SoccerServer(session, args.host, args.port, args.monitor_port, sync=args.sync)
+    server = SoccerServer(
+        session, args.host, args.port, args.monitor_port, sync=args.sync, pipeline=args.pipeline
+    )
     signal.signal(signal.SIGTERM, lambda *_: server.stop())
     mode = "sync" if args.sync else "real-time"
     print(

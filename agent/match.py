@@ -75,7 +75,9 @@ def run_match(
     if left.name == right.name:
         raise ValueError(f"the two teams need different names, both are {left.name!r}")
     session = Session(SessionConfig(seed=seed))
-    server = SoccerServer(session, "127.0.0.1", 0, monitor_port or 0, sync=not real_time)
+    server = SoccerServer(
+        session, "127.0.0.1", 0, monitor_port or 0, sync=not real_time, pipeline=team_processes
+    )
     if monitor_port is not None:
         on_event(f"monitor port {server.monitor_port} (RoboViz can connect)")
     start = time.perf_counter()

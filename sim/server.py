@@ -71,9 +71,13 @@ class SoccerServer:
         port: int = 3100,
         monitor_port: int = 3200,
         sync: bool = False,
+        pipeline: bool = False,
     ) -> None:
         self.session = session
         self.sync = sync
+        self.pipeline = pipeline
+        #: whether the session already simulated the cycle after the last perceptions sent
+        self._ahead = False
         self.selector = selectors.DefaultSelector()
         self.agent_listener = self._listen(host, port, "agent")
         self.monitor_listener = self._listen(host, monitor_port, "monitor")
@@ -86,6 +90,12 @@ class SoccerServer:
     @property
     def port(self) -> int:
         return self.agent_listener.getsockname()[1]
+
+    @property
+    def cycle(self) -> int:
+        """The last cycle whose perceptions went out (with ``pipeline`` the session may
+        already have simulated the next one)."""
+        return self.session.cycle - 1 if self._ahead else self.session.cycle
 
     @property
     def monitor_port(self) -> int:
@@ -108,7 +118,7 @@ class SoccerServer:
         waiting_since = time.monotonic()
         while (
             self._running
-            and (max_cycles is None or self.session.cycle < max_cycles)
+            and (max_cycles is None or self.cycle < max_cycles)
             and not (until is not None and until())
         ):
             if self.sync and (self._agents_with_robots() or self.local_agents):
@@ -153,8 +163,19 @@ class SoccerServer:
         self._poll(timeout)
 
     def run_cycle(self) -> None:
-        """Step the game once and send every agent its perception (and monitors their update)."""
-        self.session.step()
+        """Step the game once and send every agent its perception (and monitors their update).
+
+        With ``pipeline`` the next cycle's physics runs right after the perceptions are sent,
+        while the agents think (in their own processes): it does not depend on their answers,
+        which reach the motors a cycle later anyway (:meth:`Session.advance`), so agents see
+        exactly the same game. Only trainer commands from monitors act a cycle later than
+        without it. This is what lets a match with its teams in their own processes use both
+        cores.
+        """
+        if not self._ahead:
+            self.session.advance()
+        self.session.stage_answers()
+        self._ahead = False
         for agent_id, agent in self.local_agents.items():
             payload = self.session.perception(agent_id)
             if payload is not None:
@@ -169,6 +190,9 @@ class SoccerServer:
             message = self.session.monitor_message()
             for client in self._monitors():
                 self._send(client, message)
+        if self.pipeline:
+            self.session.advance()
+            self._ahead = True
 
     # ------------------------------------------------------------------ sockets
     def _listen(self, host: str, port: int, kind: str) -> socket.socket:

@@ -30,7 +30,9 @@ def _world_snapshot(agent: Agent) -> dict:
     }
 
 
-def test_tcp_and_in_process_agents_see_identical_worlds():
+@pytest.mark.parametrize("pipeline", [False, True])
+def test_tcp_and_in_process_agents_see_identical_worlds(pipeline: bool):
+    """Also with a pipelined server, which simulates the next cycle while the agent thinks."""
     cycles = 120
 
     # in-process: the agent answers inside the server's cycle, no socket
@@ -45,7 +47,7 @@ def test_tcp_and_in_process_agents_see_identical_worlds():
 
     # TCP: the same agent code over a real socket, server in sync mode
     tcp_session = Session(SessionConfig(seed=11))
-    tcp_server = SoccerServer(tcp_session, "127.0.0.1", 0, 0, sync=True)
+    tcp_server = SoccerServer(tcp_session, "127.0.0.1", 0, 0, sync=True, pipeline=pipeline)
     remote = Agent(AgentConfig("Same", 1, 2))
     sock = socket.create_connection(("127.0.0.1", tcp_server.port))
     sock.sendall(frame(remote.greeting()))
