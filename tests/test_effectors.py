@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from world import effectors as effectors_module
 from world.effectors import (
     JOINT_EFFECTORS,
     EffectorMessage,
@@ -177,3 +178,24 @@ def test_random_messages_survive_write_and_parse(scene, init, beam, speeds, say,
     assert errors == []
     assert parsed == message
     assert list(parsed.joint_speeds) == list(speeds)
+
+
+_PIECES = st.sampled_from(
+    ["(", ")", " ", "he1", "lle7", "rae4", "xx1", "say", "syn", "0.5", "-1e3", "nan", "x", "é"]
+)
+
+
+@given(st.lists(_PIECES, max_size=14).map("".join))
+def test_the_fast_path_reads_every_message_as_the_general_reader_does(text: str) -> None:
+    # the fast path takes messages of the common layout (joint speeds, say, syn); whatever it
+    # takes must come out exactly as the tolerant general reader has it, errors included
+    for payload in (text, text.encode("utf-8")):
+        assert parse_effectors(payload) == effectors_module._parse_general(payload)
+
+
+def test_the_fast_path_takes_the_common_messages():
+    text = "(he1 0.5)(lle4 -1.0)(say nb7c42)(syn)"
+    fast = effectors_module._parse_canonical(text)
+    assert fast == parse_effectors(text)[0] and fast.say == "nb7c42" and fast.syn
+    assert effectors_module._parse_canonical("(beam 1 2 3)(syn)") is None
+    assert effectors_module._parse_canonical("(he1 x)(syn)") is None

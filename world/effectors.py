@@ -9,6 +9,7 @@ An agent answers every perception with one message holding any of ``(scene PATH 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 from world.sexp import SExpr, SExpressionError, atom_number, dumps, parse
@@ -137,6 +138,17 @@ _READERS = {
 }
 
 
+# The fast path: what agents send nearly every cycle, joint speeds then optionally a say and the
+# syn, in write_effectors' layout. A message that matches _CANONICAL_MESSAGE as a whole holds
+# nothing else, and atoms hold no parentheses, so the findall patterns cannot pick up a piece
+# from the wrong place. Anything else, or a number that does not read, takes the general path.
+_ATOM = r"[^\s()]+"
+_JOINT_NAME = r"(?:he[12]|[rl]ae[1-4]|[rl]le[1-7])"
+_CANONICAL_MESSAGE = re.compile(rf"(?:\({_JOINT_NAME} {_ATOM}\))*(?:\(say {_ATOM}\))?(?:\(syn\))?")
+_JOINT_SPEED = re.compile(rf"\(({_JOINT_NAME}) ({_ATOM})\)")
+_SAY = re.compile(rf"\(say ({_ATOM})\)")
+
+
 def parse_effectors(payload: bytes | str) -> tuple[EffectorMessage, list[str]]:
     """Read one client message; return what it asks for and one error text per bad item.
 
@@ -144,6 +156,35 @@ def parse_effectors(payload: bytes | str) -> tuple[EffectorMessage, list[str]]:
     left out and reported, the good ones kept, as the real server does. A message that is not
     well-formed S-expressions yields an empty :class:`EffectorMessage` and one error.
     """
+    fast = _parse_canonical(payload)
+    if fast is not None:
+        return fast, []
+    return _parse_general(payload)
+
+
+def _parse_canonical(payload: bytes | str) -> EffectorMessage | None:
+    """The message, if it has the common layout and every number reads; None otherwise."""
+    try:
+        text = payload.decode("ascii") if isinstance(payload, bytes) else payload
+    except UnicodeDecodeError:
+        return None
+    if _CANONICAL_MESSAGE.fullmatch(text) is None:
+        return None
+    msg = EffectorMessage()
+    try:
+        for name, speed in _JOINT_SPEED.findall(text):
+            msg.joint_speeds[name] = atom_number(speed)
+    except ValueError:
+        return None
+    said = _SAY.search(text)
+    if said is not None:
+        msg.say = said.group(1)
+    msg.syn = text.endswith("(syn)")
+    return msg
+
+
+def _parse_general(payload: bytes | str) -> tuple[EffectorMessage, list[str]]:
+    """Tolerant path: any layout and spacing, precise errors."""
     msg = EffectorMessage()
     errors: list[str] = []
     try:
