@@ -28,6 +28,7 @@ TEAM_EXAMPLES = """examples:
 
 MATCH_EXAMPLES = """examples:
   naosoccer match --duration 20 --seed 1         a short match, events and the score
+  naosoccer match --duration 20 --seed 1 --agent-worker   the same match on two cores
   naosoccer match --duration 600 --monitor-port 3200   a full game RoboViz can watch
 """
 
@@ -115,10 +116,17 @@ def _build_parser() -> argparse.ArgumentParser:
     match.add_argument("--right-config", help="right team's settings (YAML), as --left-config")
     match.add_argument("--monitor-port", type=int, help="open a monitor port (e.g. 3200)")
     match.add_argument("--real-time", action="store_true", help="no faster than 50 cycles/s")
-    match.add_argument(
+    processes = match.add_mutually_exclusive_group()
+    processes.add_argument(
+        "--agent-worker",
+        action="store_true",
+        help="the agents think in a second process while the server simulates (the same game "
+        "as in one process, seed for seed; uses a second core)",
+    )
+    processes.add_argument(
         "--team-processes",
         action="store_true",
-        help="run each team in its own process over TCP (uses a second core)",
+        help="run each team in its own process over TCP (uses a second core; not reproducible)",
     )
     match.set_defaults(run=_run_match)
 
@@ -275,6 +283,7 @@ def _run_match(args: argparse.Namespace) -> int:
         real_time=args.real_time,
         on_event=lambda text: print(text, flush=True),
         team_processes=args.team_processes,
+        agent_worker=args.agent_worker,
     )
     print(
         f"played {result.game_time:.1f} s of game time in {result.wall_seconds:.1f} s "

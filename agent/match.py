@@ -15,6 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from agent.agent import Agent
+from agent.agent_pool import AgentPool
 from agent.team import TeamConfig
 
 log = logging.getLogger(__name__)
@@ -58,15 +59,20 @@ def run_match(
     on_event: Callable[[str], None] = print,
     on_cycle: Callable[[object], None] | None = None,
     team_processes: bool = False,
+    agent_worker: bool = False,
 ) -> MatchResult:
     """Play ``duration_s`` seconds of game time; events go to ``on_event`` as they happen and
     ``on_cycle(session)`` runs after every cycle (renderers, recorders).
 
-    ``team_processes`` runs each team in its own process, talking TCP to the server (the
-    server and the agents then use separate cores); otherwise all agents answer inside the
-    server's cycle in this process. Either way the left team joins first, one agent at a time,
-    so the game is reproducible for a seed.
+    ``agent_worker`` lets all agents think in a second process while the server simulates the
+    next cycle (:mod:`agent.agent_pool`): the same game as in one process, seed for seed, on
+    two cores. ``team_processes`` runs each team in its own process, talking TCP to the server;
+    those agents join whenever their process gets to it, so that game is not reproducible.
+    Otherwise all agents answer inside the server's cycle in this process. The left team joins
+    first, one agent at a time.
     """
+    if agent_worker and team_processes:
+        raise ValueError("choose agent_worker or team_processes, not both")
     from sim.server import SoccerServer
     from sim.session import Session, SessionConfig
 
@@ -75,27 +81,34 @@ def run_match(
     if left.name == right.name:
         raise ValueError(f"the two teams need different names, both are {left.name!r}")
     session = Session(SessionConfig(seed=seed))
-    server = SoccerServer(
-        session, "127.0.0.1", 0, monitor_port or 0, sync=not real_time, pipeline=team_processes
-    )
+    server = SoccerServer(session, "127.0.0.1", 0, monitor_port or 0, sync=not real_time)
     if monitor_port is not None:
         on_event(f"monitor port {server.monitor_port} (RoboViz can connect)")
     start = time.perf_counter()
     processes = []
     agents: list[Agent] = []
+    pool = AgentPool(left.agents() + right.agents()) if agent_worker else None
     try:
         for team in (left, right):
             if team_processes:
                 processes.append(_start_team_process(team, server.port))
+            elif pool is not None:
+                first = 0 if team is left else len(left.robot_types)
+                _join_pool(server, pool, range(first, first + len(team.robot_types)))
             else:
                 agents += _join_local(server, team.agents())
             server.serve_forever(
                 until=lambda team=team: _joined(session, team) == len(team.robot_types)
             )
+        # the pipeline starts after joining: a robot joining a pipelined server would enter
+        # a cycle later than in one process (the next cycle is simulated before it connects)
+        server.pipeline = team_processes or agent_worker
         play_start, first_cycle = time.perf_counter(), session.cycle
         _play(server, duration_s, on_event, on_cycle)
         play_wall, play_cycles = time.perf_counter() - play_start, session.cycle - first_cycle
     finally:
+        if pool is not None:
+            agents = pool.close()
         server.close()
         session.close()
         for process in processes:
@@ -131,6 +144,19 @@ def _join_local(server, agents: list[Agent]) -> list[Agent]:
         if agent.world.unum is None:
             raise RuntimeError(f"agent {agent.config} got no side and number from the server")
     return agents
+
+
+def _join_pool(server, pool: AgentPool, positions: range) -> None:
+    """The pool's agents at ``positions`` (one team's) join as in-process agents do, one at a
+    time, each once the last knows its number."""
+    for position in positions:
+        agent_id = pool.join(server, position)
+        server.serve_forever(
+            max_cycles=server.session.cycle + 50,
+            until=lambda agent_id=agent_id: pool.unum(agent_id) is not None,
+        )
+        if pool.unum(agent_id) is None:
+            raise RuntimeError(f"agent {position} of the pool got no side and number")
 
 
 def _start_team_process(team: TeamConfig, port: int):

@@ -8,8 +8,10 @@
   world model, strategy and behaviours, write the effectors), over all 22 agents of a match;
 - ``match_realtime_factor``: game seconds per wall second of an 11 vs 11 match in one process
   (server, physics and all 22 agents) on this machine, joining excluded;
+- ``match_realtime_factor[agent_worker]``: the same game with the agents thinking in a second
+  process while the server simulates the next cycle (``run_match(agent_worker=True)``);
 - ``match_realtime_factor[team_processes]``: the same with each team in its own process over
-  TCP, so the agents think on the second core while the server steps physics.
+  TCP (pipelined too), so the agents think on the second core while the server steps physics.
 
 ``--think-only`` plays the match once while recording every perception each agent received,
 then feeds the recordings to fresh agents with the same configuration and times only their
@@ -148,6 +150,8 @@ def main() -> None:
     print(f"think_ms_median: {np.median(times):.3f}")
     print(f"think_ms_p99: {np.percentile(times, 99):.3f}")
     print(f"match_realtime_factor: {result.realtime_factor:.2f}")
+    worker = run_match(duration, seed=0, on_event=lambda _: None, agent_worker=True)
+    print(f"match_realtime_factor[agent_worker]: {worker.realtime_factor:.2f}")
     split = run_match(duration, seed=0, on_event=lambda _: None, team_processes=True)
     print(f"match_realtime_factor[team_processes]: {split.realtime_factor:.2f}")
     print(f"cpu_count: {os.cpu_count()}")

@@ -48,6 +48,16 @@ class LocalAgent(Protocol):
     def think(self, payload: bytes) -> bytes: ...
 
 
+class AgentWorker(Protocol):
+    """Agents thinking in another process (``agent.agent_pool.AgentPool``), addressed by the
+    server's agent ids: the server submits their perceptions, simulates the next cycle while
+    they think (with ``pipeline``) and then collects their answers."""
+
+    def submit(self, perceptions: dict[int, bytes]) -> None: ...
+
+    def collect(self) -> dict[int, bytes]: ...
+
+
 @dataclass
 class _Client:
     sock: socket.socket
@@ -84,6 +94,8 @@ class SoccerServer:
         self.clients: dict[socket.socket, _Client] = {}
         #: in-process agents (anything with ``think(bytes) -> bytes``): same bytes, no socket
         self.local_agents: dict[int, LocalAgent] = {}
+        #: agents of worker processes, by agent id (same bytes again, answered a little later)
+        self.worker_agents: dict[int, AgentWorker] = {}
         self._running = False
 
     # ------------------------------------------------------------------ public
@@ -108,20 +120,27 @@ class SoccerServer:
         on_cycle: Callable[[], None] | None = None,
     ) -> None:
         """Run until :meth:`stop` is called (from a callback or a signal), the session reaches
-        ``max_cycles``, or ``until()`` is true; ``on_cycle()`` runs after every cycle.
+        ``max_cycles``, or ``until()`` is true; ``on_cycle()`` runs after every cycle, once its
+        perceptions are out.
 
         In sync mode the server waits for every TCP agent's ``(syn)``; in-process agents answer
-        inside the cycle, so with only those it runs as fast as it can.
+        inside the cycle, so with only those it runs as fast as it can. With ``pipeline`` the
+        session is a cycle ahead of the perceptions sent while this runs (``max_cycles`` and
+        ``until()`` see that cycle); on return its perceptions have gone out too, so the agents
+        end where they would have without the pipeline.
         """
         self._running = True
         next_cycle = time.monotonic()
         waiting_since = time.monotonic()
-        while (
-            self._running
-            and (max_cycles is None or self.cycle < max_cycles)
-            and not (until is not None and until())
-        ):
-            if self.sync and (self._agents_with_robots() or self.local_agents):
+        while self._running:
+            finished = (max_cycles is not None and self.session.cycle >= max_cycles) or (
+                until is not None and until()
+            )
+            if finished and not self._ahead:
+                break
+            if self.sync and (
+                self._agents_with_robots() or self.local_agents or self.worker_agents
+            ):
                 self._poll(0.05 if not self._all_synced() else 0.0)
                 if not self._all_synced():
                     if time.monotonic() - waiting_since > SYNC_TIMEOUT_S:
@@ -135,9 +154,7 @@ class SoccerServer:
                 next_cycle += CYCLE_SECONDS
                 if time.monotonic() - next_cycle > 1.0:  # fell far behind: do not try to catch up
                     next_cycle = time.monotonic()
-            self.run_cycle()
-            if on_cycle is not None:
-                on_cycle()
+            self.run_cycle(on_cycle, simulate_next=not finished)
 
     def stop(self) -> None:
         self._running = False
@@ -149,6 +166,14 @@ class SoccerServer:
             self.selector.unregister(listener)
             listener.close()
         self.selector.close()
+
+    def add_worker_agent(self, worker: AgentWorker, greeting: bytes) -> int:
+        """Connect an agent that thinks in ``worker``'s process; ``greeting`` is its first
+        message (``scene``). Returns the agent id the worker's perceptions are keyed by."""
+        agent_id = self.session.add_agent()
+        self.worker_agents[agent_id] = worker
+        self.session.handle_message(agent_id, greeting)
+        return agent_id
 
     def add_local_agent(self, agent: LocalAgent) -> int:
         """Connect an in-process agent: it gets its perception and answers inside
@@ -162,15 +187,18 @@ class SoccerServer:
         """Serve socket traffic (connections, effectors, trainer commands) for up to timeout."""
         self._poll(timeout)
 
-    def run_cycle(self) -> None:
-        """Step the game once and send every agent its perception (and monitors their update).
+    def run_cycle(
+        self, on_cycle: Callable[[], None] | None = None, simulate_next: bool = True
+    ) -> None:
+        """Step the game once and send every agent its perception (and monitors their update);
+        then ``on_cycle()``.
 
-        With ``pipeline`` the next cycle's physics runs right after the perceptions are sent,
-        while the agents think (in their own processes): it does not depend on their answers,
-        which reach the motors a cycle later anyway (:meth:`Session.advance`), so agents see
-        exactly the same game. Only trainer commands from monitors act a cycle later than
-        without it. This is what lets a match with its teams in their own processes use both
-        cores.
+        With ``pipeline`` (and ``simulate_next``) the next cycle's physics runs right after
+        that, while the agents think in their own processes (TCP clients, agent workers): it
+        does not depend on their answers, which reach the motors a cycle later anyway
+        (:meth:`Session.advance`), so the agents see exactly the same game. Only trainer
+        commands from monitors act a cycle later than without it (``on_cycle`` still acts in
+        time). This is what lets a match use both cores.
         """
         if not self._ahead:
             self.session.advance()
@@ -180,6 +208,7 @@ class SoccerServer:
             payload = self.session.perception(agent_id)
             if payload is not None:
                 self.session.handle_message(agent_id, agent.think(payload))
+        workers = self._submit_to_workers()
         for client in list(self.clients.values()):
             if client.kind == "agent" and client.agent_id is not None:
                 payload = self.session.perception(client.agent_id)
@@ -190,9 +219,25 @@ class SoccerServer:
             message = self.session.monitor_message()
             for client in self._monitors():
                 self._send(client, message)
-        if self.pipeline:
+        if on_cycle is not None:
+            on_cycle()
+        if self.pipeline and simulate_next:
             self.session.advance()
             self._ahead = True
+        for worker in workers:
+            for agent_id, answer in sorted(worker.collect().items()):
+                self.session.handle_message(agent_id, answer)
+
+    def _submit_to_workers(self) -> list[AgentWorker]:
+        """Hand every worker its agents' perceptions; returns the workers that got some."""
+        batches: dict[int, tuple[AgentWorker, dict[int, bytes]]] = {}
+        for agent_id, worker in self.worker_agents.items():
+            payload = self.session.perception(agent_id)
+            if payload is not None:
+                batches.setdefault(id(worker), (worker, {}))[1][agent_id] = payload
+        for worker, perceptions in batches.values():
+            worker.submit(perceptions)
+        return [worker for worker, _ in batches.values()]
 
     # ------------------------------------------------------------------ sockets
     def _listen(self, host: str, port: int, kind: str) -> socket.socket:

@@ -142,3 +142,19 @@ def test_opponents_restart_keeps_our_players_back():
     assert not opponents_restart("PlayOn", "left")
     assert not opponents_restart("BeforeKickOff", "right")
     assert not opponents_restart("KickIn_Left", None)
+
+
+def test_agents_in_a_worker_process_play_the_same_game_as_in_one_process():
+    # the server simulates the next cycle while the worker's agents think (pipeline): the
+    # answers still reach the motors at the same cycles, so every agent ends in the same state
+    teams = {
+        "left": TeamConfig("Reds", robot_types=(0, 1, 2)),
+        "right": TeamConfig("Blues", robot_types=(3, 4, 0)),
+    }
+    here = run_match(3.0, seed=6, **teams, on_event=lambda _: None)
+    worker = run_match(3.0, seed=6, **teams, on_event=lambda _: None, agent_worker=True)
+    assert worker.cycles == here.cycles and len(worker.agents) == len(here.agents) == 6
+    for a, b in zip(here.agents, worker.agents, strict=True):
+        assert a.cycles == b.cycles and a.cycles > 100
+        assert _world_snapshot(b) == _world_snapshot(a)
+    assert worker.score_line() == here.score_line()
