@@ -28,7 +28,7 @@ TEAM_EXAMPLES = """examples:
 
 MATCH_EXAMPLES = """examples:
   naosoccer match --duration 20 --seed 1         a short match, events and the score
-  naosoccer match --duration 20 --seed 1 --agent-worker   the same match on two cores
+  naosoccer match --duration 20 --seed 1 --one-process    the same match on one core
   naosoccer match --duration 600 --monitor-port 3200   a full game RoboViz can watch
 """
 
@@ -121,7 +121,10 @@ def _build_parser() -> argparse.ArgumentParser:
         "--agent-worker",
         action="store_true",
         help="the agents think in a second process while the server simulates (the same game "
-        "as in one process, seed for seed; uses a second core)",
+        "as in one process, seed for seed; uses a second core): the default on 2+ cores",
+    )
+    processes.add_argument(
+        "--one-process", action="store_true", help="server and agents in this process"
     )
     processes.add_argument(
         "--team-processes",
@@ -271,9 +274,18 @@ def _match_team(name: str, config_path: str | None):
     return replace(TeamConfig.from_yaml(config_path), name=name)
 
 
+def _default_agent_worker(args: argparse.Namespace) -> bool:
+    """Agents in a worker process unless asked otherwise or there is only one core: the game
+    is the same either way, only faster with the physics and the thinking on two cores."""
+    import os
+
+    return not (args.one_process or args.team_processes) and (os.cpu_count() or 1) >= 2
+
+
 def _run_match(args: argparse.Namespace) -> int:
     from agent.match import run_match
 
+    agent_worker = args.agent_worker or _default_agent_worker(args)
     result = run_match(
         args.duration,
         seed=args.seed,
@@ -283,11 +295,12 @@ def _run_match(args: argparse.Namespace) -> int:
         real_time=args.real_time,
         on_event=lambda text: print(text, flush=True),
         team_processes=args.team_processes,
-        agent_worker=args.agent_worker,
+        agent_worker=agent_worker,
     )
     print(
         f"played {result.game_time:.1f} s of game time in {result.wall_seconds:.1f} s "
-        f"({result.realtime_factor:.2f}x real time once all players had joined)"
+        f"({result.realtime_factor:.2f}x real time once all players had joined"
+        f"{'; agents in a worker process' if agent_worker else ''})"
     )
     print(result.score_line())
     return 0
