@@ -495,13 +495,18 @@ def test_type0_back_crouch_with_less_hip_flexion_brings_a_benchmark_fall_up(monk
     assert own.name == "get_up_back_type0"
     assert own.frames[3].joints["llj3"] < sequence_for("get_up_back", 2).frames[3].joints["llj3"]
     assert run_trial(0, "back", 517).succeeded
+    _package_without(monkeypatch, "get_up_back_type0")
+    assert not run_trial(0, "back", 517).succeeded
+
+
+def _package_without(monkeypatch, sequence_name: str) -> None:
+    """The skill's packaged sequences without ``sequence_name`` (the common one plays)."""
     common = {
         name: sequence
         for name, sequence in get_up_module.default_sequences().items()
-        if name != "get_up_back_type0"
+        if name != sequence_name
     }
     monkeypatch.setattr(get_up_module, "default_sequences", lambda: common)
-    assert not run_trial(0, "back", 517).succeeded
 
 
 def test_a_front_get_up_tipping_back_is_caught_from_its_pitch_rate(monkeypatch):
@@ -512,3 +517,18 @@ def test_a_front_get_up_tipping_back_is_caught_from_its_pitch_rate(monkeypatch):
     assert run_trial(1, "front", 1500).succeeded
     monkeypatch.setattr(get_up_module, "FRONT_ABORT_HORIZON_S", 0.0)
     assert not run_trial(1, "front", 1500).succeeded
+
+
+def test_type3_side_roll_with_less_shoulder_push_brings_a_benchmark_fall_up(monkeypatch):
+    """Benchmark fall type 3 seed 3019 (``--seed 0``, ends on the right side): with type 3's
+    own roll (the lower arm pushes through 40 deg of shoulder roll instead of 95) the robot
+    lies straight on its back and stands within 4 s; with the common roll it lies twisted, its
+    sit-ups tip back over the shoulders and it stays down."""
+    own = sequence_for(get_up_module.ROLL_FROM_LEFT, 3)
+    assert own.name == "roll_left_to_back_type3"
+    assert (
+        own.frames[1].joints["laj2"] < sequence_for("roll_left_to_back", 0).frames[1].joints["laj2"]
+    )
+    assert run_trial(3, "right", 3019).succeeded
+    _package_without(monkeypatch, "roll_left_to_back_type3")
+    assert not run_trial(3, "right", 3019).succeeded
