@@ -534,16 +534,20 @@ def test_type3_side_roll_with_less_shoulder_push_brings_a_benchmark_fall_up(monk
     assert not run_trial(3, "right", 3019).succeeded
 
 
-def test_type3_front_get_up_with_the_knees_folded_less_brings_a_benchmark_fall_up(monkeypatch):
-    """Benchmark fall type 3 seed 3516 (``--seed 500``, ends on the front): with the knees
-    folded to -80 deg in the second frame the robot stands within 4 s; with the fold of the
-    other types (-116.7) the torso tips over the knees and the robot stays down."""
-    own = sequence_for("get_up_front", 3)
+@pytest.mark.parametrize(("robot_type", "seed"), [(3, 3516), (4, 4516)])
+def test_front_get_up_with_the_knees_folded_less_brings_a_benchmark_fall_up(
+    monkeypatch, robot_type, seed
+):
+    """Benchmark falls of types 3 and 4 (``--seed 500``, ending on the front): with the knees
+    folded to -80 / -90 deg in the second frame the robot stands within 4 s; with the fold of
+    the other types (-116.7) the torso tips over the knees (or the squat back) and it stays
+    down."""
+    own = sequence_for("get_up_front", robot_type)
     assert own.frames[1].joints["llj4"] > sequence_for("get_up_front", 1).frames[1].joints["llj4"]
-    assert run_trial(3, "front", 3516).succeeded
-    entry = raw_entries()["get_up_front_type3"]
+    assert run_trial(robot_type, "front", seed).succeeded
+    entry = raw_entries()[own.name]
     for side in "lr":
         entry["frames"][1]["joints"][f"{side}lj4"] = -116.7
-    folded = candidate_sequences("get_up_front_type3", entry)
+    folded = candidate_sequences(own.name, entry)
     monkeypatch.setattr(get_up_module, "default_sequences", lambda: folded)
-    assert not run_trial(3, "front", 3516).succeeded
+    assert not run_trial(robot_type, "front", seed).succeeded
