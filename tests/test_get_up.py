@@ -534,11 +534,11 @@ def test_type3_side_roll_with_less_shoulder_push_brings_a_benchmark_fall_up(monk
     assert not run_trial(3, "right", 3019).succeeded
 
 
-@pytest.mark.parametrize(("robot_type", "seed"), [(3, 3516), (4, 4516)])
+@pytest.mark.parametrize(("robot_type", "seed"), [(2, 2504), (3, 3516), (4, 4516)])
 def test_front_get_up_with_the_knees_folded_less_brings_a_benchmark_fall_up(
     monkeypatch, robot_type, seed
 ):
-    """Benchmark falls of types 3 and 4 (``--seed 500``, ending on the front): with the knees
+    """Benchmark falls of types 2-4 (``--seed 500``, ending on the front): with the knees
     folded to -80 / -90 deg in the second frame the robot stands within 4 s; with the fold of
     the other types (-116.7) the torso tips over the knees (or the squat back) and it stays
     down."""
