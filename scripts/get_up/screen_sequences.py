@@ -1,0 +1,199 @@
+"""Screen get-up sequence variants on the benchmark's own trials, with its exact outcomes.
+
+Why: a change to one type's keyframes changes only that type's trials, and the benchmark's
+trials are cheap one by one (about 0.25 s), but two thirds of each is the fall. Here each
+trial falls once (:func:`benchmarks.get_up.fall`, the benchmark's seeds from
+:func:`benchmarks.get_up.trial_specs`); then for every variant the process forks and the child
+plays the get-up (:func:`benchmarks.get_up.play_get_up`) with the variant's sequences. A fork
+copies the simulator bit for bit (contact caches included, unlike ``Session.save_state``), so
+the ``base`` variant repeats ``benchmarks/get_up.py``'s outcomes trial for trial (checked with
+``--check``) and every variant's figures are what the benchmark would print with its sequences
+packaged. Still a screen: a kept variant is written into ``behaviors/data/get_up.yaml`` and
+measured with the benchmark itself.
+
+A variant is ``base`` or edits separated by ``;``:
+
+- ``NEW=BASE``: sequence ``NEW`` becomes a copy of the raw entry ``BASE``
+  (``get_up_back_type3=get_up_back``);
+- ``SEQ:FRAME:KEY=VALUE,...``: in frame FRAME of SEQ set a joint target (a left joint or head
+  joint name, ``lj3`` short for ``llj3``; the right twin is set to the mirror value) or
+  ``duration`` / ``hold`` / ``track`` / ``pose``; ``-KEY`` drops a joint (and its twin),
+  ``!KEY=VALUE`` sets the joint alone (a one-sided motion such as a roll);
+- ``SEQ:dup:FRAME``: insert a copy of frame FRAME after it; ``SEQ:del:FRAME``: delete it.
+
+Run::
+
+    nice -n 5 .venv/bin/python scripts/get_up/screen_sequences.py --types 3 --seed 0 \\
+        --seed 500 --variant base --variant "get_up_back_type3:1:lj4=-40"
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import os
+import pickle
+import sys
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+
+from behaviors.get_up import GetUpSkill
+from behaviors.keyframes import KeyframeSequence, default_sequences, parse_sequences
+from behaviors.mirror import MIRROR_TABLE
+from benchmarks.get_up import TrialResult, fall, play_get_up, run_trial, trial_specs
+from learning.falls import FALL_DIRECTIONS
+from learning.get_up_search import raw_entries
+
+_FRAME_FIELDS = {"duration", "hold"}
+_TEXT_FIELDS = {"track", "pose"}
+
+
+def _joint(key: str) -> str:
+    """``lj3`` -> ``llj3``; full perceptor names pass through (checked)."""
+    name = key if key in MIRROR_TABLE else "l" + key
+    if name not in MIRROR_TABLE:
+        raise SystemExit(f"unknown joint {key!r}")
+    return name
+
+
+def _set_frame(frame: dict[str, Any], assignments: str) -> None:
+    joints = frame.setdefault("joints", {})
+    for item in assignments.split(","):
+        if item.startswith("-"):
+            name = _joint(item[1:])
+            joints.pop(name, None)
+            joints.pop(MIRROR_TABLE[name].twin, None)
+            continue
+        key, value = item.split("=")
+        if key.startswith("!"):  # this joint alone, not its twin (one-sided motions)
+            joints[_joint(key[1:])] = float(value)
+        elif key in _FRAME_FIELDS:
+            frame[key] = float(value)
+        elif key in _TEXT_FIELDS:
+            frame[key] = value
+        else:
+            name = _joint(key)
+            twin = MIRROR_TABLE[name]
+            joints[name] = float(value)
+            if twin.twin != name:
+                joints[twin.twin] = twin.sign * float(value) + 0.0
+
+
+def apply_variant(entries: dict[str, Any], variant: str) -> dict[str, Any]:
+    """A copy of the raw get-up entries with the variant's edits (module docstring)."""
+    out = copy.deepcopy(entries)
+    if variant == "base":
+        return out
+    for edit in filter(None, (e.strip() for e in variant.split(";"))):
+        if ":" not in edit:
+            new, base = edit.split("=")
+            out[new] = copy.deepcopy(out[base])
+            continue
+        name, where, what = edit.split(":", 2)
+        frames = out[name]["frames"]
+        if where == "dup":
+            frames.insert(int(what) + 1, copy.deepcopy(frames[int(what)]))
+        elif where == "del":
+            del frames[int(what)]
+        else:
+            _set_frame(frames[int(where)], what)
+    return out
+
+
+def variant_sequences(variant: str) -> Mapping[str, KeyframeSequence]:
+    """The packaged sequences with the variant's edited entries parsed in their place."""
+    if variant == "base":
+        return default_sequences()
+    sequences = dict(default_sequences())
+    sequences.update(parse_sequences(apply_variant(raw_entries(), variant), "variant"))
+    return sequences
+
+
+def _play_forked(
+    driver: Any, spec: tuple[int, str, int], lying_on: str | None, sequences: Any
+) -> TrialResult:
+    """The get-up from this fall in a forked child (the parent's simulator stays as it was)."""
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # child: play, report, exit without cleanup
+        os.close(read)
+        try:
+            skill = driver.behavior.skill("get_up")
+            assert isinstance(skill, GetUpSkill)
+            skill.sequences = sequences
+            result = play_get_up(driver, *spec, lying_on)
+            os.write(write, pickle.dumps(result))
+        finally:
+            os._exit(0)
+    os.close(write)
+    with os.fdopen(read, "rb") as pipe:
+        data = pipe.read()
+    os.waitpid(pid, 0)
+    return pickle.loads(data)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--seed", type=int, action="append")
+    parser.add_argument("--types", default="3")
+    parser.add_argument("--trials-per-type", type=int, default=20)
+    parser.add_argument("--variant", action="append")
+    parser.add_argument("--directions", default=",".join(FALL_DIRECTIONS))
+    parser.add_argument(
+        "--lying-on", help="play only trials whose fall ends on these sides (front,back,...)"
+    )
+    parser.add_argument(
+        "--check", action="store_true", help="also run the base through run_trial and compare"
+    )
+    parser.add_argument("--show-changes", action="store_true", help="trials that differ from base")
+    args = parser.parse_args()
+    types = [int(t) for t in args.types.split(",")]
+    variants = args.variant or ["base"]
+    all_sequences = {v: variant_sequences(v) for v in variants}
+    base_sequences = default_sequences()
+    totals = dict.fromkeys(variants, 0)
+    changes: dict[str, list[str]] = {v: [] for v in variants}
+    for seed in args.seed or [0]:
+        ups = dict.fromkeys(variants, 0)
+        played = 0
+        specs = trial_specs(types, args.trials_per_type, seed, args.directions.split(","))
+        for spec in specs:
+            session, driver, lying_on = fall(*spec)
+            try:
+                if args.lying_on and lying_on not in args.lying_on.split(","):
+                    continue
+                played += 1
+                base = _play_forked(driver, spec, lying_on, base_sequences).succeeded
+                if args.check and run_trial(*spec).succeeded != base:
+                    print(f"MISMATCH with run_trial: {spec}", flush=True)
+                for variant in variants:
+                    up = (
+                        base
+                        if variant == "base"
+                        else _play_forked(driver, spec, lying_on, all_sequences[variant]).succeeded
+                    )
+                    ups[variant] += up
+                    if up != base:
+                        changes[variant].append(
+                            f"{'+' if up else '-'}{spec[0]}:{spec[1]}:{spec[2]}"
+                        )
+            finally:
+                session.close()
+        for variant in variants:
+            totals[variant] += ups[variant]
+        print(
+            f"seed {seed} ({played} trials): " + "  ".join(f"{ups[v]}" for v in variants),
+            flush=True,
+        )
+    for variant in variants:
+        line = f"{totals[variant]:4d}  {variant}"
+        if args.show_changes and variant != "base":
+            line += "  " + " ".join(changes[variant])
+        print(line)
+
+
+if __name__ == "__main__":
+    main()
