@@ -132,6 +132,13 @@ class WalkParameters:
     go_to_pitch_back_deg: float = math.inf
     go_to_pitch_back_release_deg: float = 3.0
     go_to_pitch_back_speed: float = 0.1
+    #: walking to a target: within this distance (m) of it the command has the
+    #: ``odometry_drift`` taken off (feed-forward: the robot then really moves at the velocity
+    #: it wants). Why (session 9): at the 0.2 m/s approach floor the drift (-0.1 m/s forward
+    #: on every type) halves the real speed towards a target ahead and makes it 0.3 m/s
+    #: towards one behind, and type 2 circled its targets for seconds, sideways and
+    #: backwards, until it tipped over. 0 (the default) is off.
+    go_to_drift_feedforward_m: float = 0.0
     #: how much of the planned torso motion really happens (measured)
     odometry_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
     #: torso drift (m/s, forward and left in the robot frame) while stepping that the step plan
@@ -644,6 +651,10 @@ class WalkSkill(WalkSkillBase):
             # a fast step that also goes sideways and turns trips the robot (type 2 fell at
             # 0.8 m/s forward with 0.25 m/s sideways)
             vy = 0.0 if facing_travel else vy * slow
+        if distance < engine.params.go_to_drift_feedforward_m:
+            drift_x, drift_y = engine.params.odometry_drift
+            vx = min(vx - drift_x, max_forward)
+            vy -= drift_y
         vy = max(-max_side, min(max_side, vy))
         vturn = max(-g.max_turn_deg, min(g.max_turn_deg, g.heading_gain * heading_error))
         return vx, vy, vturn

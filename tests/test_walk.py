@@ -165,11 +165,13 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
     assert inside.go_to_drift_lookahead_s == 0.0
     assert inside.walk_to_max_speed == 0.75 > own.walk_to_max_speed
     assert inside.go_to_pitch_back_deg == math.inf
+    assert inside.go_to_drift_feedforward_m == 0.0
     own_only = {
         "odometry_drift": own.odometry_drift,
         "go_to_drift_lookahead_s": own.go_to_drift_lookahead_s,
         "walk_to_max_speed": own.walk_to_max_speed,
         "go_to_pitch_back_deg": own.go_to_pitch_back_deg,
+        "go_to_drift_feedforward_m": own.go_to_drift_feedforward_m,
     }
     assert replace(inside, **own_only) == own  # nothing else differs
 
@@ -326,6 +328,33 @@ def test_walk_sideways_and_turn_on_the_spot_type0(sign):
 def test_walk_forward_covers_2_m_in_5_s_type0():
     distance, fell, _ = _forward_run(0, 1.0, 5.0)
     assert not fell and distance >= 2.0
+
+
+def test_near_a_target_the_command_takes_the_drift_off():
+    """Session 9: the robot drifts back 0.08-0.1 m/s while stepping (``odometry_drift``), so at
+    the 0.2 m/s approach floor it crept towards a target ahead and overshot one behind, and type
+    2 circled its targets until it fell. Within ``go_to_drift_feedforward_m`` the command is the
+    wanted velocity less the drift (capped at the walk's top speed); beyond it, and with the
+    feed-forward off, the command is the wanted velocity."""
+    assert walk_parameters(2).go_to_drift_feedforward_m > 0.0  # on for type 2 only
+    assert walk_parameters(0).go_to_drift_feedforward_m == 0.0
+    base = replace(walk_parameters(2), go_to_drift_feedforward_m=0.0)
+    on = replace(base, go_to_drift_feedforward_m=0.4)
+    drift_x = on.odometry_drift[0]
+    assert drift_x < 0.0
+    skill = WalkSkill()
+
+    def command(params: WalkParameters, x: float, y: float) -> tuple[float, float, float]:
+        skill.reset()
+        return skill._velocity(WalkEngine(2, params), 0.0, 0.0, 0.0, x, y, None)
+
+    for x, y in ((0.1, 0.0), (-0.1, 0.0), (0.0, 0.2), (0.25, -0.1)):
+        wanted, fed = command(base, x, y), command(on, x, y)
+        assert fed[0] == pytest.approx(wanted[0] - drift_x)
+        assert fed[1:] == pytest.approx(wanted[1:])
+    assert command(on, 2.0, 0.5) == command(base, 2.0, 0.5)  # far away: unchanged
+    top = min(on.step.max_forward / (on.step.step_cycles * 0.02), on.walk_to_max_speed)
+    assert command(on, 0.39, 0.0)[0] <= top + 1e-9
 
 
 def test_walk_to_target_stops_within_10_cm():
