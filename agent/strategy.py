@@ -206,16 +206,29 @@ class AttackConfig:
 class SupportConfig:
     """Where the second field player (the next-lowest claim after the active player) waits
     for a loose ball: ``ahead_m`` beyond the ball towards the opponent goal and ``side_m`` to
-    one side of the dribble line (so it does not stand in the dribbler's way). ``ahead_m`` 0
-    and ``side_m`` 0 (the default): no support, it holds its formation place. Off because
-    3 v 3, 120 s, LFDL, seeds 1 and 2 gave 20 and 24 falls with it, 13-14 and 9-14 without,
-    and no goal either way (benchmarks/match.py --set strategy.support.ahead_m=2
-    --set strategy.support.side_m=1.5 to try it)."""
+    one side of the dribble line (so it does not stand in the dribbler's way), only while the
+    ball is in the opponent half beyond ``from_x_m``, and stepping in place while an opponent
+    stands in its way (``avoid_m``). ``ahead_m`` 0 and ``side_m`` 0: no support, it holds its
+    formation place. On since session 9: 3 v 3, 120 s (benchmarks/match.py --players 3
+    --matches 8 --duration 120 --seed 1 and --seed 9) seeds 1-8 2 goals, 119 falls (off: 0,
+    100), seeds 9-16 4 goals, 104 falls (off: 3, 108). Everywhere (``from_x_m`` -15, no
+    ``avoid_m``) it fell more: seeds 1-8 2 goals, 140 falls; from 3 m without ``avoid_m`` 3
+    goals, 136 falls."""
 
-    ahead_m: float = 0.0
-    side_m: float = 0.0
+    ahead_m: float = 2.0
+    side_m: float = 1.5
     #: it stays at least this far from the opponent goal line and the touch lines
     margin_m: float = 1.0
+    #: it supports only while the ball lies at least this far up the field (team frame x;
+    #: -15: everywhere; 3: the opponent half beyond the centre circle); short of it, it holds
+    #: its formation place. Why: a
+    #: supporter near a duel in midfield or the own half walks into it (more falls), while
+    #: near the opponent goal it can take the ball a goalkeeper wins off the active player
+    from_x_m: float = 3.0
+    #: on its way it stops (steps in place) while an opponent stands within this (m) of it in
+    #: the direction it walks (within 60 deg): a supporter crossing the field walked into
+    #: opponents holding their places, far from the ball (falls; 0: never stops)
+    avoid_m: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -525,6 +538,9 @@ class Strategy:
             return False
         support = self.config.support
         if support.ahead_m <= 0.0 and support.side_m <= 0.0:
+            return False
+        ball = world.ball.position
+        if ball is None or ball[0] < support.from_x_m:
             return False
         mine = parse_claim(claim_message(world.unum, claim))
         own = claim if mine is None else mine[1]
@@ -876,7 +892,21 @@ class Strategy:
         if "walk" not in behavior.skill_names:
             behavior.execute("pose", "stand")
             return
-        _walk_facing_ball(world, behavior, self.support_point(world.ball.position))
+        target = self.support_point(world.ball.position)
+        pose = world.pose
+        if (
+            pose is not None
+            and "walk_velocity" in behavior.skill_names
+            and _opponent_in_the_way(
+                (pose.x, pose.y),
+                target,
+                self._opponent_positions(world),
+                self.config.support.avoid_m,
+            )
+        ):
+            behavior.execute("walk_velocity", 0.0, 0.0, 0.0)
+            return
+        _walk_facing_ball(world, behavior, target)
 
     def _hold_position(self, world, behavior) -> None:
         """Walk to the formation place and face the ball there (to keep seeing it)."""
@@ -894,6 +924,23 @@ def _walk_facing_ball(world, behavior, place: tuple[float, float]) -> None:
     heading = 0.0 if ball is None else _heading_to(place, ball)
     step = HOLD_HEADING_STEP_DEG
     behavior.execute("walk", place[0], place[1], step * round(heading / step))
+
+
+def _opponent_in_the_way(
+    origin: tuple[float, float],
+    target: tuple[float, float],
+    opponents: list[tuple[float, float]],
+    within_m: float,
+) -> bool:
+    """Whether an opponent stands within ``within_m`` of ``origin`` and within 60 deg of the
+    direction to ``target`` (never once ``target`` is reached or ``within_m`` is 0)."""
+    if within_m <= 0.0 or math.dist(origin, target) < within_m:
+        return False
+    to_target = _heading_to(origin, target)
+    return any(
+        math.dist(origin, p) < within_m and abs(wrap_deg(_heading_to(origin, p) - to_target)) < 60.0
+        for p in opponents
+    )
 
 
 def _last_seen_at_feet(world) -> bool:

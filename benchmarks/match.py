@@ -153,6 +153,29 @@ def team_with_overrides(path: str | Path, overrides: list[str]) -> TeamConfig:
     return config_from_mapping(TeamConfig, data, source=f"{path} with {overrides}")
 
 
+def probe_parser(description: str) -> argparse.ArgumentParser:
+    """The options of a one-match diagnostic (``scripts/attack/*_probe.py``): players,
+    duration, seed, team file and ``--set``, as :func:`probe_teams` reads them."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--players", type=int, default=3)
+    parser.add_argument("--duration", type=float, default=120.0)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--config")
+    add_set_option(parser)
+    return parser
+
+
+def probe_teams(args: argparse.Namespace) -> tuple[RecordedTeam, RecordedTeam]:
+    """The two recording teams of a diagnostic's match, as :func:`play` fields them."""
+    base = None
+    if args.config or args.set:
+        base = team_with_overrides(args.config or DEFAULT_TEAM_FILE, args.set)
+    return (
+        _recorded(small_team("NaoLeft", args.players, base)),
+        _recorded(small_team("NaoRight", args.players, base)),
+    )
+
+
 def _recorded(team: TeamConfig) -> RecordedTeam:
     return RecordedTeam(team.name, team.robot_types, team.strategy)
 

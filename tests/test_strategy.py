@@ -405,7 +405,8 @@ def test_a_stall_beside_the_goal_is_escaped_to_its_front_if_told_so():
 
 def test_the_second_closest_field_player_waits_ahead_of_the_ball_beside_the_line():
     behavior = RecordingBehavior("walk", "dribble")
-    strategy = Strategy(StrategyConfig(support=SupportConfig(ahead_m=2.0, side_m=1.5)))
+    support = SupportConfig(ahead_m=2.0, side_m=1.5, from_x_m=-15.0)
+    strategy = Strategy(StrategyConfig(support=support))
     # teammate 7 is closer (active); this player is second: it supports
     strategy.decide(world((0.0, 2.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
     name, x, y, heading = behavior.calls[-1]
@@ -417,10 +418,33 @@ def test_the_second_closest_field_player_waits_ahead_of_the_ball_beside_the_line
     # near the goal and a touch line it stays inside the field
     x, y = strategy.support_point((14.5, -8.5))
     assert x <= 14.0 and y >= -9.0
-    # support switched off (the default): it holds its formation place
-    off = Strategy()
+    # support switched off (0 and 0): it holds its formation place
+    off = Strategy(StrategyConfig(support=SupportConfig(ahead_m=0.0, side_m=0.0)))
     off.decide(world((0.0, 2.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
     assert behavior.calls[-1][1:3] == off.home(9)
+    # only from the given x on: short of it, it holds its place too
+    late = Strategy(StrategyConfig(support=SupportConfig(ahead_m=2.0, side_m=1.5, from_x_m=5.0)))
+    late.decide(world((0.0, 2.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
+    assert behavior.calls[-1][1:3] == late.home(9)
+    late.decide(world((6.0, 2.0), (-2.0, 0.0, 0.0), heard=[said(7, 1.0)]), behavior)
+    assert behavior.calls[-1][1:3] == pytest.approx(late.support_point((6.0, 2.0)))
+
+
+def test_a_supporter_steps_in_place_while_an_opponent_stands_in_its_way_if_told_so():
+    behavior = RecordingBehavior("walk", "walk_velocity", "dribble")
+    support = SupportConfig(ahead_m=2.0, side_m=1.5, avoid_m=1.0)
+    strategy = Strategy(StrategyConfig(support=support))
+    heard = [said(7, 1.0)]
+    in_way = SimpleNamespace(unum=3, position=(-1.3, 0.2))  # 0.7 m ahead, towards the point
+    behind = SimpleNamespace(unum=4, position=(-2.7, 0.0))  # as close, but behind it
+    strategy.decide(world((6.0, 2.0), (-2.0, 0.0, 0.0), heard=heard, opponents=[in_way]), behavior)
+    assert behavior.calls[-1] == ("walk_velocity", 0.0, 0.0, 0.0)
+    strategy.decide(world((6.0, 2.0), (-2.0, 0.0, 0.0), heard=heard, opponents=[behind]), behavior)
+    assert behavior.calls[-1][0] == "walk"
+    # with avoid_m 0 it walks on
+    plain = Strategy(StrategyConfig(support=SupportConfig(ahead_m=2.0, side_m=1.5, avoid_m=0.0)))
+    plain.decide(world((6.0, 2.0), (-2.0, 0.0, 0.0), heard=heard, opponents=[in_way]), behavior)
+    assert behavior.calls[-1][0] == "walk"
 
 
 def test_a_ball_held_at_the_feet_for_seconds_makes_the_player_step_back():
