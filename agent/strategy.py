@@ -209,14 +209,18 @@ class SupportConfig:
     one side of the dribble line (so it does not stand in the dribbler's way), only while the
     ball is in the opponent half beyond ``from_x_m``, and stepping in place while an opponent
     stands in its way (``avoid_m``). ``ahead_m`` 0 and ``side_m`` 0: no support, it holds its
-    formation place. On since session 9: 3 v 3, 120 s (benchmarks/match.py --players 3
-    --matches 8 --duration 120 --seed 1 and --seed 9) seeds 1-8 2 goals, 119 falls (off: 0,
-    100), seeds 9-16 4 goals, 104 falls (off: 3, 108). Everywhere (``from_x_m`` -15, no
+    formation place. Off by default. On the attack branch of session 9 (ahead 2.0, side 1.5,
+    from 3 m, avoid 1 m) 3 v 3, 120 s (benchmarks/match.py --players 3 --matches 8 --duration
+    120 --seed 1 and --seed 9) gave seeds 1-8 2 goals, 119 falls (off: 0, 100), seeds 9-16 4
+    goals, 104 falls (off: 3, 108); on the merged checkout (with session 9's walk and get-up)
+    the same commands gave 1 goal, 1.05 falls per player-minute and 1 goal, 1.08 against 2
+    goals, 0.97 and 4 goals, 0.98 with it off, so it stays off (--set strategy.support.ahead_m=2
+    --set strategy.support.side_m=1.5 to try it). Everywhere (``from_x_m`` -15, no
     ``avoid_m``) it fell more: seeds 1-8 2 goals, 140 falls; from 3 m without ``avoid_m`` 3
     goals, 136 falls."""
 
-    ahead_m: float = 2.0
-    side_m: float = 1.5
+    ahead_m: float = 0.0
+    side_m: float = 0.0
     #: it stays at least this far from the opponent goal line and the touch lines
     margin_m: float = 1.0
     #: it supports only while the ball lies at least this far up the field (team frame x;
