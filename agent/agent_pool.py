@@ -39,9 +39,6 @@ class AgentPool:
         worker_end.close()
         self._waiting = False
 
-    def __len__(self) -> int:
-        return len(self._greetings)
-
     def join(self, server, position: int) -> int:
         """Connect the agent at ``position`` to ``server``; returns its agent id."""
         agent_id = server.add_worker_agent(self, self._greetings[position])
@@ -69,8 +66,14 @@ class AgentPool:
             raise RuntimeError(f"the agents' worker gave no answer for {ANSWER_TIMEOUT_S:.0f} s")
         self._waiting = False
         agent_ids = {position: agent_id for agent_id, position in self._index.items()}
+        try:
+            answers = self._connection.recv()
+        except EOFError:
+            raise RuntimeError(
+                "the agents' worker process ended (its traceback is above)"
+            ) from None
         result = {}
-        for position, (answer, unum) in self._connection.recv():
+        for position, (answer, unum) in answers:
             agent_id = agent_ids[position]
             result[agent_id], self._unums[agent_id] = answer, unum
         return result
