@@ -42,27 +42,39 @@ class _Message:
 
 
 @dataclass
-class Ear:
-    """One listener's hearing state: capacities and the messages waiting for its perception."""
+class _Channel:
+    """What a listener hears of one team (its own, or the opponents'): the capacity and the
+    message waiting for the next perception."""
 
-    mate_capacity: int = HEAR_MAX
-    opponent_capacity: int = HEAR_MAX
+    capacity: int = HEAR_MAX
+    waiting: _Message | None = field(default=None, repr=False)
+
+    def offer(self, message: _Message) -> None:
+        if self.capacity < HEAR_DECAY:
+            return
+        self.capacity -= HEAR_DECAY
+        self.waiting = message
+
+    def take(self, game_time: float) -> list[Heard]:
+        """The waiting message, if any; every call (one per perception) gives capacity back."""
+        self.capacity = min(HEAR_MAX, self.capacity + HEAR_INC)
+        message, self.waiting = self.waiting, None
+        if message is None:
+            return []
+        return [Heard(message.team, game_time, message.direction, message.text)]
+
+
+@dataclass
+class Ear:
+    """One listener's hearing state: a channel per team and its own message."""
+
     own: str | None = None
-    mate: _Message | None = field(default=None, repr=False)
-    opponent: _Message | None = field(default=None, repr=False)
+    mate: _Channel = field(default_factory=_Channel)
+    opponent: _Channel = field(default_factory=_Channel)
 
     def offer(self, message: _Message, teammate: bool) -> None:
         """A message reaches this listener; it is kept only if the capacity allows."""
-        if teammate:
-            if self.mate_capacity < HEAR_DECAY:
-                return
-            self.mate_capacity -= HEAR_DECAY
-            self.mate = message
-        else:
-            if self.opponent_capacity < HEAR_DECAY:
-                return
-            self.opponent_capacity -= HEAR_DECAY
-            self.opponent = message
+        (self.mate if teammate else self.opponent).offer(message)
 
     def take(self, own_team: str, game_time: float) -> list[Heard]:
         """The ``hear`` entries of this cycle's perception (own, teammate, opponent, as the
@@ -71,16 +83,7 @@ class Ear:
         if self.own is not None:
             heard.append(Heard(own_team, game_time, "self", self.own))
             self.own = None
-        self.mate_capacity = min(HEAR_MAX, self.mate_capacity + HEAR_INC)
-        if self.mate is not None:
-            heard.append(Heard(self.mate.team, game_time, self.mate.direction, self.mate.text))
-            self.mate = None
-        self.opponent_capacity = min(HEAR_MAX, self.opponent_capacity + HEAR_INC)
-        if self.opponent is not None:
-            message = self.opponent
-            heard.append(Heard(message.team, game_time, message.direction, message.text))
-            self.opponent = None
-        return heard
+        return heard + self.mate.take(game_time) + self.opponent.take(game_time)
 
 
 @dataclass(frozen=True)

@@ -104,12 +104,6 @@ class SoccerServer:
         return self.agent_listener.getsockname()[1]
 
     @property
-    def cycle(self) -> int:
-        """The last cycle whose perceptions went out (with ``pipeline`` the session may
-        already have simulated the next one)."""
-        return self.session.cycle - 1 if self._ahead else self.session.cycle
-
-    @property
     def monitor_port(self) -> int:
         return self.monitor_listener.getsockname()[1]
 
@@ -170,17 +164,21 @@ class SoccerServer:
     def add_worker_agent(self, worker: AgentWorker, greeting: bytes) -> int:
         """Connect an agent that thinks in ``worker``'s process; ``greeting`` is its first
         message (``scene``). Returns the agent id the worker's perceptions are keyed by."""
-        agent_id = self.session.add_agent()
+        agent_id = self._greet(greeting)
         self.worker_agents[agent_id] = worker
-        self.session.handle_message(agent_id, greeting)
         return agent_id
 
     def add_local_agent(self, agent: LocalAgent) -> int:
         """Connect an in-process agent: it gets its perception and answers inside
         :meth:`run_cycle`, with the very bytes a TCP agent would exchange."""
-        agent_id = self.session.add_agent()
+        agent_id = self._greet(agent.greeting())
         self.local_agents[agent_id] = agent
-        self.session.handle_message(agent_id, agent.greeting())
+        return agent_id
+
+    def _greet(self, greeting: bytes) -> int:
+        """A new session agent that has sent ``greeting`` (its ``scene``): its agent id."""
+        agent_id = self.session.add_agent()
+        self.session.handle_message(agent_id, greeting)
         return agent_id
 
     def poll(self, timeout: float = 0.0) -> None:
