@@ -35,10 +35,17 @@ def check_robot_types(robot_types: Sequence[int], type_weights: Sequence[float] 
         )
 
 
-def draw_robot_type(
-    rng: np.random.Generator, robot_types: Sequence[int], type_weights: Sequence[float] | None
+def episode_robot_type(
+    rng: np.random.Generator,
+    options: Mapping[str, Any],
+    robot_types: Sequence[int],
+    type_weights: Sequence[float] | None,
 ) -> int:
-    """A robot type drawn by ``type_weights`` (equal where None)."""
+    """The robot type of an episode: ``options['robot_type']`` where ``reset`` was given one,
+    else drawn by ``type_weights`` (equal where None)."""
+    chosen = options.get("robot_type")
+    if chosen is not None:
+        return int(chosen)
     weights = np.array(type_weights or [1.0] * len(robot_types))
     return int(robot_types[int(rng.choice(len(robot_types), p=weights / weights.sum()))])
 

@@ -47,8 +47,8 @@ from learning.envs.common import (
     EnvConfigError,
     HeldResidual,
     check_robot_types,
-    draw_robot_type,
     env_config_from_mapping,
+    episode_robot_type,
     zero_action_speed,
 )
 from learning.falls import FALL_DIRECTIONS
@@ -158,11 +158,11 @@ class GetUpResidualEnv(gym.Env):
     ) -> tuple[np.ndarray, dict[str, Any]]:
         super().reset(seed=seed)
         options = options or {}
-        robot_type = options.get("robot_type")
-        if robot_type is None:
-            config = self.config
-            robot_type = draw_robot_type(self.np_random, config.robot_types, config.type_weights)
-        bank = self.bank(int(robot_type))
+        config = self.config
+        robot_type = episode_robot_type(
+            self.np_random, options, config.robot_types, config.type_weights
+        )
+        bank = self.bank(robot_type)
         fall = options.get("fall")
         if fall is None:
             fall = int(self.np_random.integers(len(bank.states)))

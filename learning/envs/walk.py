@@ -42,8 +42,8 @@ from learning.envs.common import (
     EnvConfigError,
     HeldResidual,
     check_robot_types,
-    draw_robot_type,
     env_config_from_mapping,
+    episode_robot_type,
     zero_action_speed,
 )
 from learning.local_agent import LocalAgent
@@ -169,15 +169,15 @@ class WalkResidualEnv(gym.Env):
     ) -> tuple[np.ndarray, dict[str, Any]]:
         super().reset(seed=seed)
         options = options or {}
-        robot_type = options.get("robot_type")
-        if robot_type is None:
-            config = self.config
-            robot_type = draw_robot_type(self.np_random, config.robot_types, config.type_weights)
-        standing = self.standing(int(robot_type))
+        config = self.config
+        robot_type = episode_robot_type(
+            self.np_random, options, config.robot_types, config.type_weights
+        )
+        standing = self.standing(robot_type)
         agent = LocalAgent.from_snapshot(
             standing.session,
             standing.agent,
-            int(robot_type),
+            robot_type,
             "Walkers",
             standing.snapshot,
             standing.world,
@@ -187,7 +187,7 @@ class WalkResidualEnv(gym.Env):
         skill.residual = self._held
         fixed = options.get("command")
         self._fixed_command = None if fixed is None else tuple(float(v) for v in fixed)
-        episode = _Episode(agent, skill, int(robot_type))
+        episode = _Episode(agent, skill, robot_type)
         episode.command = self._fixed_command or self._draw_command()
         episode.poses.append(self._ground_pose(agent))
         self._episode = episode
