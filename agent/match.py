@@ -138,11 +138,7 @@ def _join_local(server, agents: list[Agent]) -> list[Agent]:
     """In-process agents join one at a time: the next once the last knows its number."""
     for agent in agents:
         server.add_local_agent(agent)
-        server.serve_forever(
-            max_cycles=server.session.cycle + 50, until=lambda a=agent: a.world.unum is not None
-        )
-        if agent.world.unum is None:
-            raise RuntimeError(f"agent {agent.config} got no side and number from the server")
+        _await_number(server, lambda a=agent: a.world.unum is not None, f"agent {agent.config}")
     return agents
 
 
@@ -151,12 +147,16 @@ def _join_pool(server, pool: AgentPool, positions: range) -> None:
     time, each once the last knows its number."""
     for position in positions:
         agent_id = pool.join(server, position)
-        server.serve_forever(
-            max_cycles=server.session.cycle + 50,
-            until=lambda agent_id=agent_id: pool.unum(agent_id) is not None,
+        _await_number(
+            server, lambda a=agent_id: pool.unum(a) is not None, f"agent {position} of the pool"
         )
-        if pool.unum(agent_id) is None:
-            raise RuntimeError(f"agent {position} of the pool got no side and number")
+
+
+def _await_number(server, has_number: Callable[[], bool], who: str) -> None:
+    """Run cycles (50 at most) until a joining agent knows its side and number."""
+    server.serve_forever(max_cycles=server.session.cycle + 50, until=has_number)
+    if not has_number():
+        raise RuntimeError(f"{who} got no side and number from the server")
 
 
 def _start_team_process(team: TeamConfig, port: int):
