@@ -31,6 +31,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from world.perception import CYCLE_SECONDS
+
 #: A claim older than this (s) no longer counts: its speaker went quiet (lost the ball, left).
 CLAIM_MEMORY_S = 1.0
 #: Largest claim that fits the message (decimetres).
@@ -40,8 +42,6 @@ MAX_CLAIM_DM = 9999
 TURN_CYCLES = 2
 #: Uniform numbers that take turns (a full team; the turns of absent players stay silent).
 TEAM_SIZE = 11
-#: Length of a server cycle (s): the turns count cycles of the server's clock.
-CYCLE_S = 0.02
 
 _CLAIM = re.compile(r"^nb(\d{1,2})c(\d{1,4})$")
 
@@ -55,7 +55,7 @@ def claim_message(unum: int, claim_m: float) -> str:
 def my_turn_to_speak(unum: int, server_time: float) -> bool:
     """Whether player ``unum`` may speak in the cycle of the perception stamped
     ``server_time``: every player of the team computes the same turns from the shared clock."""
-    cycle = round(server_time / CYCLE_S)
+    cycle = round(server_time / CYCLE_SECONDS)
     if cycle % TURN_CYCLES:
         return False
     return (cycle // TURN_CYCLES) % TEAM_SIZE == (unum - 1) % TEAM_SIZE
