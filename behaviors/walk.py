@@ -25,6 +25,7 @@ Odometry: every cycle the torso motion the step plan assumes (scaled by the per-
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
@@ -239,6 +240,37 @@ class WalkEngine:
         self._cycles = 0
         self._stepping = False
         self._heading_drift = 0.0
+        #: step parameters that take over at the next step boundary (see continue_from)
+        self._pending_step: StepParameters | None = None
+        #: the manager cycle of the last step() (None before the first): a skill taking
+        #: over checks that this engine walked in the cycle just before
+        self.last_cycle: int | None = None
+
+    def continue_from(self, other: WalkEngine) -> None:
+        """Carry on the steps ``other`` is taking instead of starting from the stance.
+
+        Why: a skill that starts while another walking skill was mid-step (the strategy's
+        walk to the ball handing over to a dribble) used to restart from standing still: the
+        new engine planned the feet at their neutral places and zero velocity while the robot
+        was mid-stride at 0.3-0.6 m/s, and the lurch tipped it 15-30 deg (the kick-off taker
+        fell that way, ``scripts/attack/kickoff_probe.py``). The step under way finishes with
+        ``other``'s step shape; this engine's own shape takes over at the next step. Engines
+        of different robot types do not hand over.
+        """
+        if other.robot_type != self.robot_type:
+            return
+        self.generator = copy.deepcopy(other.generator)
+        own_step = self.params.step
+        self._pending_step = None if other.params.step == own_step else own_step
+        self.velocity = other.velocity
+        self._last_speed = dict(other._last_speed)
+        self._previous_target = (
+            None if other._previous_target is None else dict(other._previous_target)
+        )
+        self._start_pose = None if other._start_pose is None else dict(other._start_pose)
+        self._cycles = other._cycles
+        self._stepping = other._stepping
+        self._heading_drift = other._heading_drift
 
     # ------------------------------------------------------------------ state
     @property
@@ -270,6 +302,12 @@ class WalkEngine:
         ``offsets_deg`` (joint -> degrees) is added to the angles the engine is about to
         track: the hook a learned residual acts through (``behaviors.learned_walk``), so the
         residual rides on the engine's own tracking instead of replacing it."""
+        if self._pending_step is not None and (
+            self.generator.phase[0] < 0 or self.generator.at_step_end
+        ):
+            self.generator.with_params(self._pending_step)
+            self._pending_step = None
+        self.last_cycle = getattr(context.manager, "cycle", None)
         self._smooth_velocity(vx, vy, math.radians(vturn_deg))
         self._track_heading(context)
         targets = self._next_foot_targets(context)
@@ -457,6 +495,24 @@ class WalkEngine:
             )
 
 
+def engine_to_continue(context: SkillContext, skill_name: str) -> WalkEngine | None:
+    """The walk engine that top-level skill ``skill_name``, starting this cycle, carries on
+    (:meth:`WalkEngine.continue_from`): the engine of the previous top-level behaviour if that
+    skill walks with one (``gait_engine``) and was mid-step in the cycle just before; None
+    otherwise (a start from a stand, a sub-behaviour, a skill that does not walk)."""
+    manager = context.manager
+    current = getattr(manager, "current", None)
+    previous = getattr(manager, "previous", None)
+    if current is None or previous is None or current.name != skill_name or current.cycles != 1:
+        return None
+    if tuple(getattr(manager, "running", ())) != (skill_name,):
+        return None
+    engine = getattr(manager.skill(previous.name), "gait_engine", None)
+    if engine is None or not engine.is_stepping or engine.last_cycle != manager.cycle - 1:
+        return None
+    return engine
+
+
 def _inside_another_skill(context: SkillContext) -> bool:
     """Whether the walk runs as another skill's sub-behaviour (``basic_kick`` runs ``walk`` and
     ``walk_velocity``): the manager's stack of running skills holds more than the walk."""
@@ -476,10 +532,19 @@ class WalkSkillBase(Skill):
         self._file: Path = WALK_FILE
         #: whether the engine was made for a walk run by another skill (``inside_skills``)
         self._inside = False
+        #: the first cycle after a (re)start: the gait of the skill before may carry on
+        self._starting = True
 
     def reset(self) -> None:
         if self._engine is not None:
             self._engine.reset()
+        self._starting = True
+
+    @property
+    def gait_engine(self) -> WalkEngine | None:
+        """The engine this skill walks with (None before its first cycle): a walking skill
+        that takes over carries on its steps (:func:`engine_to_continue`)."""
+        return self._engine
 
     def engine(self, context: SkillContext) -> WalkEngine:
         robot_type = context.world.robot.robot_type
@@ -495,6 +560,11 @@ class WalkSkillBase(Skill):
             self._engine = WalkEngine(robot_type, self.engine_parameters(params))
             self._file = self.walk_file
             self._inside = inside
+        if self._starting:
+            self._starting = False
+            other = engine_to_continue(context, self.name)
+            if other is not None and other is not self._engine:
+                self._engine.continue_from(other)
         return self._engine
 
     def engine_parameters(self, params: WalkParameters) -> WalkParameters:
