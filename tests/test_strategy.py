@@ -12,6 +12,7 @@ import pytest
 from agent.attack_keeper import detour_point, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from agent.strategy import (
+    SEARCH_TURN_DEG_S,
     AttackConfig,
     HoldWatch,
     Strategy,
@@ -19,6 +20,7 @@ from agent.strategy import (
     SupportConfig,
     approach_point,
     dodge_heading,
+    search_turn_deg_s,
 )
 from world.perception import Heard
 
@@ -596,3 +598,20 @@ def test_players_take_turns_to_speak_so_every_claim_is_heard():
         if decision.say is not None:
             said_at.append(cycle)
     assert len(said_at) == 1 and my_turn_to_speak(9, said_at[0] * 0.02)
+
+
+@pytest.mark.parametrize(
+    ("ball", "heading_deg", "sign"),
+    [
+        ((-5.0, -0.5), 0.0, -1.0),  # behind, over the right shoulder: turn right
+        ((-5.0, 0.5), 0.0, 1.0),  # behind, over the left shoulder: turn left
+        ((0.0, 3.0), 0.0, 1.0),  # on the left
+        ((-2.0, -3.0), 90.0, 1.0),  # facing +y, the ball behind, a little to the left
+        ((3.0, -3.0), 90.0, -1.0),  # facing +y, the ball to the right
+        (None, 0.0, 1.0),  # never seen: left by default
+    ],
+)
+def test_a_lost_ball_is_searched_for_turning_towards_its_last_place(ball, heading_deg, sign):
+    """The shorter way round to the side the lost ball was last placed on."""
+    turn = search_turn_deg_s(world(ball=ball, pose=(-1.0, 0.0, heading_deg)))
+    assert turn == sign * SEARCH_TURN_DEG_S
