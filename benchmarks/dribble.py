@@ -319,11 +319,7 @@ def report_lines(runs: list[DribbleRun]) -> list[str]:
         lines.append(f"{key}_first_metre_s[{t}]: {mean_first:.2f}")
         lines.append(f"{key}_first_metre_s_max[{t}]: {max(firsts, default=0.0):.2f}")
         return lines  # the per-phase distances are a straight dribble's figure
-    pooled: dict[tuple[int, bool], list[float]] = defaultdict(list)
-    for run in runs:
-        for phase, distances in run.phase_distances.items():
-            pooled[phase].extend(distances)
-    for (phase_t, left), distances in sorted(pooled.items()):
+    for (phase_t, left), distances in sorted(pooled_phase_distances(runs).items()):
         if phase_t < 0 or not distances:
             continue
         side = "left" if left else "right"
@@ -359,6 +355,15 @@ def _run_one(
     )
 
 
+def pooled_phase_distances(runs: list[DribbleRun]) -> dict[tuple[int, bool], list[float]]:
+    """The ball's distance at every cycle of every run, by phase (before the first step: t -1)."""
+    pooled: dict[tuple[int, bool], list[float]] = defaultdict(list)
+    for run in runs:
+        for phase, distances in run.phase_distances.items():
+            pooled[phase].extend(distances)
+    return dict(pooled)
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--types", type=int, nargs="+", default=[0], choices=ROBOT_TYPES)
@@ -375,7 +380,14 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--trace", type=float, default=0.0, metavar="SECONDS", help="per-run lines and traces"
     )
+    parser.add_argument(
+        "--plot",
+        type=Path,
+        metavar="PNG",
+        help="box plots of the ball's distance per phase (straight runs; needs matplotlib)",
+    )
     args = parser.parse_args(argv)
+    per_phase: dict[str, dict[tuple[int, bool], list[float]]] = {}
     with tempfile.TemporaryDirectory() as folder:
         data_file = with_settings(args.set, Path(folder)) if args.set else DRIBBLE_FILE
         with ProcessPoolExecutor(max(args.jobs, 1)) as pool:
@@ -393,6 +405,15 @@ def main(argv: list[str] | None = None) -> None:
                                 print(line, flush=True)
                         for line in report_lines(runs):
                             print(line, flush=True)
+                        if not angle:
+                            label = f"{kind.upper()}, type {robot_type}, {args.foot} foot"
+                            per_phase[label] = pooled_phase_distances(runs)
+    if args.plot is not None and per_phase:
+        from benchmarks.plots import phase_distance_plot
+
+        seeds = " ".join(str(s) for s in args.seeds)
+        title = f"torso-to-ball distance per phase, {args.distance:g} m runs, seeds {seeds}"
+        print(f"plot: {phase_distance_plot(per_phase, args.plot, title)}", flush=True)
 
 
 if __name__ == "__main__":
