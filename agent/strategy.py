@@ -61,6 +61,12 @@ STEP_BACK_M_S = 0.3
 GOT_UP_NEAR_BALL_M = 0.5
 #: Players holding their place face the ball to the nearest multiple of this angle (deg).
 HOLD_HEADING_STEP_DEG = 30.0
+#: Skills that leave the head alone, so the strategy turns it towards the ball
+#: (:func:`head_yaw_for`): within HEAD_STILL_DEG of the torso's heading the head looks ahead,
+#: and it turns at most HEAD_YAW_MAX_DEG (the neck allows 120).
+HEAD_FREE_SKILLS = ("walk", "walk_velocity")
+HEAD_STILL_DEG = 30.0
+HEAD_YAW_MAX_DEG = 90.0
 
 
 def _default_formation() -> dict[int, tuple[float, float]]:
@@ -483,6 +489,7 @@ class Strategy:
             self._support(world, behavior)
         else:
             self._hold_position(world, behavior)
+        _look_towards_ball(world, behavior)
         return Decision(beam=beam, say=self._say(world, claim))
 
     @staticmethod
@@ -945,6 +952,28 @@ def _opponent_in_the_way(
         math.dist(origin, p) < within_m and abs(wrap_deg(_heading_to(origin, p) - to_target)) < 60.0
         for p in opponents
     )
+
+
+def head_yaw_for(bearing_deg: float) -> float:
+    """The neck yaw (deg) that keeps a ball at ``bearing_deg`` from the torso in view: none
+    within :data:`HEAD_STILL_DEG` (the camera looks ahead, as the skills expect), beyond it the
+    head turns by the excess, up to :data:`HEAD_YAW_MAX_DEG` (the view cone's half-width is 60
+    deg, so the ball stays in view up to about 150 deg off the torso's heading)."""
+    excess = max(0.0, abs(bearing_deg) - HEAD_STILL_DEG)
+    return math.copysign(min(excess, HEAD_YAW_MAX_DEG), bearing_deg)
+
+
+def _look_towards_ball(world, behavior) -> None:
+    """Turn the head towards the ball while a walking skill, which leaves the head alone, moves
+    the body. Why: walking to a place facing the way of travel, players lost sight of a ball
+    behind them for seconds (and made no claims meanwhile). The dribbles, kicks, poses and the
+    get-up set the head themselves."""
+    current = behavior.current
+    ball, pose = world.ball.position, world.pose
+    if current is None or current.name not in HEAD_FREE_SKILLS or ball is None or pose is None:
+        return
+    bearing = wrap_deg(_heading_to((pose.x, pose.y), ball) - pose.heading_deg)
+    behavior.commands.set_targets({"hj1": head_yaw_for(bearing)})
 
 
 def search_turn_deg_s(world) -> float:

@@ -20,8 +20,11 @@ from agent.strategy import (
     SupportConfig,
     approach_point,
     dodge_heading,
+    head_yaw_for,
     search_turn_deg_s,
 )
+from behaviors.joint_control import JointCommands
+from behaviors.manager import BehaviorRun
 from world.perception import Heard
 
 
@@ -31,10 +34,15 @@ class RecordingBehavior:
     def __init__(self, *skills: str) -> None:
         self.skill_names = ("pose", "keyframe", *skills)
         self.calls: list[tuple] = []
+        self.commands = JointCommands(0)
 
     def execute(self, name: str, *args: object) -> bool:
         self.calls.append((name, *args))
         return False
+
+    @property
+    def current(self) -> BehaviorRun | None:
+        return BehaviorRun(self.calls[-1][0], 1) if self.calls else None
 
 
 class Seen:
@@ -615,3 +623,30 @@ def test_a_lost_ball_is_searched_for_turning_towards_its_last_place(ball, headin
     """The shorter way round to the side the lost ball was last placed on."""
     turn = search_turn_deg_s(world(ball=ball, pose=(-1.0, 0.0, heading_deg)))
     assert turn == sign * SEARCH_TURN_DEG_S
+
+
+@pytest.mark.parametrize(
+    ("bearing", "yaw"),
+    [(0.0, 0.0), (25.0, 0.0), (-30.0, 0.0), (60.0, 30.0), (-100.0, -70.0), (170.0, 90.0)],
+)
+def test_the_head_turns_by_the_bearing_beyond_the_still_zone_up_to_its_limit(bearing, yaw):
+    assert head_yaw_for(bearing) == pytest.approx(yaw)
+
+
+@pytest.mark.parametrize(("skills", "turned"), [(("walk",), True), (("walk", "dribble"), False)])
+def test_the_head_follows_a_ball_behind_only_while_a_walk_moves_the_body(skills, turned):
+    """Holding its place with the ball behind on the right, a player walks there and turns its
+    head right; a skill that sets the head itself (the dribble, once at the ball) is left alone."""
+    behavior = RecordingBehavior(*skills)
+    ball, pose = ((-3.0, -1.0), (0.0, 0.0, 0.0)) if turned else ((0.25, 0.0), (0.0, 0.0, 0.0))
+    Strategy().decide(world(ball=ball, pose=pose, unum=10), behavior)
+    targets = behavior.commands.targets()
+    if turned:
+        assert behavior.calls[-1][0] == "walk"
+        assert targets["hj1"] == pytest.approx(
+            head_yaw_for(-180.0 + math.degrees(math.atan2(1.0, 3.0)))
+        )
+        assert targets["hj1"] < -60.0
+    else:
+        assert behavior.calls[-1][0] != "walk"
+        assert "hj1" not in targets
