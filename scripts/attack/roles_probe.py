@@ -1,6 +1,7 @@
 """How well a k v k team settles who goes for the ball: per team, the PlayOn seconds with no,
-one and two or more active players (``Strategy._was_active``), and how long the ball lies free
-(no robot within ``FREE_M``) while the team's nearest robot is not the active one.
+one and two or more active players (``Strategy._was_active``), how long the ball lies free
+(no robot within ``FREE_M``) while the team's nearest robot is not the active one, and per
+player the seconds it had lost the ball (``agent.strategy.ball_lost``, any play mode).
 
 A diagnostic, not a benchmark (it reads the simulator's ground truth to classify, never to
 act): the match is ``benchmarks.match.play``'s, same seeds and teams.
@@ -34,8 +35,12 @@ def main() -> None:
     switches = Counter()
     idle = {"L": Counter(), "R": Counter()}
     last_active: dict = {}
+    lost = Counter()
 
     def on_cycle(session) -> None:
+        for agent in left.made + right.made:
+            if agent.world.time is not None and ball_lost(agent.world):
+                lost[f"{agent.config.team_name[3]}{agent.config.unum}"] += CYCLE_S
         if session.referee.play_mode != "PlayOn":
             return
         bx, by, _ = session.ball.position()
@@ -71,6 +76,8 @@ def main() -> None:
             f"hand-overs {switches[team]}; free ball, nearest not active {wrong[team]:.0f} s"
         )
         print("    none active: " + ", ".join(f"{k} {v:.0f} s" for k, v in idle[team].items()))
+    per_player = " ".join(f"{k} {v:.1f}" for k, v in sorted(lost.items()))
+    print(f"  ball lost (s): {per_player}; all players {sum(lost.values()):.1f}")
 
 
 def _why_idle(agents: dict) -> str:
