@@ -19,7 +19,9 @@ A variant is ``base`` or edits separated by ``;``:
   joint name, ``lj3`` short for ``llj3``; the right twin is set to the mirror value) or
   ``duration`` / ``hold`` / ``track`` / ``pose``; ``-KEY`` drops a joint (and its twin),
   ``!KEY=VALUE`` sets the joint alone (a one-sided motion such as a roll);
-- ``SEQ:dup:FRAME``: insert a copy of frame FRAME after it; ``SEQ:del:FRAME``: delete it.
+- ``SEQ:dup:FRAME``: insert a copy of frame FRAME after it; ``SEQ:del:FRAME``: delete it;
+- ``balance=FILE``: the rise's balance corrections from FILE (the format of
+  ``behaviors/data/get_up_balance.yaml``) instead of the packaged ones.
 
 Run::
 
@@ -40,7 +42,7 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from behaviors.get_up import GetUpSkill
+from behaviors.get_up import GetUpSkill, RiseBalance, load_balances
 from behaviors.keyframes import KeyframeSequence, default_sequences, parse_sequences
 from behaviors.mirror import MIRROR_TABLE
 from benchmarks.get_up import TrialResult, fall, play_get_up, run_trial, trial_specs
@@ -48,6 +50,7 @@ from learning.falls import FALL_DIRECTIONS
 from learning.get_up_search import raw_entries
 
 _FRAME_FIELDS = {"duration", "hold"}
+_BALANCE_EDIT = "balance="
 _TEXT_FIELDS = {"track", "pose"}
 
 
@@ -88,6 +91,8 @@ def apply_variant(entries: dict[str, Any], variant: str) -> dict[str, Any]:
     if variant == "base":
         return out
     for edit in filter(None, (e.strip() for e in variant.split(";"))):
+        if edit.startswith(_BALANCE_EDIT):
+            continue
         if ":" not in edit:
             new, base = edit.split("=")
             out[new] = copy.deepcopy(out[base])
@@ -112,8 +117,20 @@ def variant_sequences(variant: str) -> Mapping[str, KeyframeSequence]:
     return sequences
 
 
+def variant_balances(variant: str) -> Mapping[str, RiseBalance] | None:
+    """The variant's balance corrections (its ``balance=FILE`` edit), None: the packaged."""
+    for edit in (e.strip() for e in variant.split(";")):
+        if edit.startswith(_BALANCE_EDIT):
+            return load_balances(Path(edit[len(_BALANCE_EDIT) :]))
+    return None
+
+
 def _play_forked(
-    driver: Any, spec: tuple[int, str, int], lying_on: str | None, sequences: Any
+    driver: Any,
+    spec: tuple[int, str, int],
+    lying_on: str | None,
+    sequences: Any,
+    balances: Mapping[str, RiseBalance] | None = None,
 ) -> TrialResult:
     """The get-up from this fall in a forked child (the parent's simulator stays as it was)."""
     read, write = os.pipe()
@@ -124,7 +141,7 @@ def _play_forked(
             skill = driver.behavior.skill("get_up")
             assert isinstance(skill, GetUpSkill)
             skill.sequences = sequences
-            result = play_get_up(driver, *spec, lying_on)
+            result = play_get_up(driver, *spec, lying_on, balances=balances)
             os.write(write, pickle.dumps(result))
         finally:
             os._exit(0)
@@ -149,13 +166,18 @@ def main() -> None:
         "--check", action="store_true", help="also run the base through run_trial and compare"
     )
     parser.add_argument("--show-changes", action="store_true", help="trials that differ from base")
+    parser.add_argument(
+        "--show-failures", action="store_true", help="the trials every variant leaves down"
+    )
     args = parser.parse_args()
     types = [int(t) for t in args.types.split(",")]
     variants = args.variant or ["base"]
     all_sequences = {v: variant_sequences(v) for v in variants}
+    all_balances = {v: variant_balances(v) for v in variants}
     base_sequences = default_sequences()
     totals = dict.fromkeys(variants, 0)
     changes: dict[str, list[str]] = {v: [] for v in variants}
+    failures: dict[str, list[str]] = {v: [] for v in variants}
     for seed in args.seed or [0]:
         ups = dict.fromkeys(variants, 0)
         played = 0
@@ -173,9 +195,13 @@ def main() -> None:
                     up = (
                         base
                         if variant == "base"
-                        else _play_forked(driver, spec, lying_on, all_sequences[variant]).succeeded
+                        else _play_forked(
+                            driver, spec, lying_on, all_sequences[variant], all_balances[variant]
+                        ).succeeded
                     )
                     ups[variant] += up
+                    if not up:
+                        failures[variant].append(f"{spec[0]}:{spec[1]}:{spec[2]}:{lying_on}")
                     if up != base:
                         changes[variant].append(
                             f"{'+' if up else '-'}{spec[0]}:{spec[1]}:{spec[2]}"
@@ -192,6 +218,8 @@ def main() -> None:
         line = f"{totals[variant]:4d}  {variant}"
         if args.show_changes and variant != "base":
             line += "  " + " ".join(changes[variant])
+        if args.show_failures:
+            line += "\n      down: " + " ".join(failures[variant])
         print(line)
 
 

@@ -16,6 +16,15 @@ FRONT_ABORT_HORIZON_S 0.15 343, ABORT_HORIZON_S 0.05 345; before it (344): both 
 the base's failures predicts little (RETRY_AT_ONCE_PITCH_DEG 50 brought 7 of them up and lost
 8 others), so every candidate needs the full seeds.
 
+Session 10 (base 359 of 400): EARLY_STAND_DEG (kept at 12) 5 / 10 / 12 / 15 / 20 -> 178 of 200
+on 0 / 500 (= base), 361 / 361 / 361, 81 of 200 on 0 / 500 (reported below standing height).
+On type 3 alone (``--types 3 --seed 10000 --seed 20000 --seed 30000``, base 42 of 60):
+RETRY_AT_ONCE_MAX_GYRO_DEG_S 100 / 200 41 / 41, RETRY_AT_ONCE_PITCH_DEG None 42. Tried and
+removed again: abandoning a back sit-up at once when the torso pitches back past 100 deg (a
+retry started while still falling back goes over the head and lies there until the sit-up's
+end): type 3 seed 0 16 -> 15 of 20 (14 when the next attempt then waits for the body to
+settle); the retry from there rolls over the head again.
+
 Run::
 
     nice -n 5 .venv/bin/python scripts/get_up/sweep_knobs.py --seed 0 --seed 500 \\
