@@ -48,6 +48,10 @@ KICK_RIGHT = "kick_right"
 #: Suffix of a motion that ``basic_kick`` plays after its approach and alignment shuffle
 #: (``kick_right_aligned``) in place of the plain one (see :func:`kick_motion`).
 ALIGNED_SUFFIX = "_aligned"
+#: Suffix of a motion that ``basic_kick`` plays after its alignment when asked for more than
+#: the aligned motion's table reaches, or for "long" (``kick_right_aligned_long``; see
+#: :func:`kick_motion`).
+LONG_SUFFIX = "_long"
 FEET = ("left", "right")
 #: Balance on one leg: degrees of support-ankle roll per degree of torso roll away from the
 #: roll measured when the weight has just moved onto the support leg. Why: standing on one foot
@@ -227,6 +231,7 @@ def kick_motion(
     kicks: Mapping[str, KickMotion] | None = None,
     foot: str = "left",
     aligned: bool = False,
+    long: bool = False,
 ) -> KickMotion:
     """The motion that ``foot`` kicks with: the robot type's own if there is one, else the
     common one. The right foot plays :data:`KICK_RIGHT` where the file has one, else
@@ -241,11 +246,16 @@ def kick_motion(
     support foot after a shuffle than from a stand (torso roll 8-10 deg against 6) and falls
     over it, while a smaller weight shift that suits it falls after contact from a stand.
     After the alignment the left kick's support hip extends further (about 0.3 m more, no more
-    falls in basic kicks); on the right foot the same change fell more."""
+    falls in basic kicks); on the right foot the same change fell more.
+    ``long`` prefers the name with :data:`LONG_SUFFIX` (``kick_right_aligned_long``): the right
+    kick with its support side's arm raised goes further and falls less at full strength, but
+    its weaker swings miss their distances by more (session 10), so it serves long requests."""
     kicks = default_kicks() if kicks is None else kicks
     names: tuple[str, ...] = (KICK_RIGHT, KICK_LEFT) if foot == "right" else (KICK_LEFT,)
     if aligned:
         names = tuple(itertools.chain.from_iterable((n + ALIGNED_SUFFIX, n) for n in names))
+    if long:
+        names = tuple(itertools.chain.from_iterable((n + LONG_SUFFIX, n) for n in names))
     for name in names:
         motion = kicks.get(f"{name}_type{robot_type}") or kicks.get(name)
         if motion is not None:
@@ -254,8 +264,9 @@ def kick_motion(
 
 
 class KickSkill(Skill):
-    """``execute("kick", foot, strength, aligned=False)``: kick with ``"left"``/``"right"`` at
-    0..1; ``aligned``: the motion for after ``basic_kick``'s alignment (:func:`kick_motion`).
+    """``execute("kick", foot, strength, aligned=False, long=False)``: kick with
+    ``"left"``/``"right"`` at 0..1; ``aligned``: the motion for after ``basic_kick``'s
+    alignment, ``long``: its long version where there is one (:func:`kick_motion`).
 
     Finished once the motion has brought the robot back into the stand pose. Asking for the
     other foot or another strength while a kick plays does not interrupt it: a half-played
@@ -278,18 +289,25 @@ class KickSkill(Skill):
         self._done = False
         self._balance = None
 
-    def validate(self, foot: str, strength: float = 1.0, aligned: bool = False) -> None:
+    def validate(
+        self, foot: str, strength: float = 1.0, aligned: bool = False, long: bool = False
+    ) -> None:
         if foot not in FEET:
             raise ValueError(f"foot must be one of {', '.join(FEET)}, got {foot!r}")
         if not 0.0 <= strength <= 1.0:
             raise ValueError(f"strength must be in [0, 1], got {strength!r}")
 
     def step(
-        self, context: SkillContext, foot: str, strength: float = 1.0, aligned: bool = False
+        self,
+        context: SkillContext,
+        foot: str,
+        strength: float = 1.0,
+        aligned: bool = False,
+        long: bool = False,
     ) -> bool:
         robot = context.world.robot
         if self._player is None or self._done:
-            motion = kick_motion(robot.robot_type, self.motions, foot, aligned)
+            motion = kick_motion(robot.robot_type, self.motions, foot, aligned, long)
             sequence = motion.sequence(strength, mirror=foot == "right")
             self._player = KeyframePlayer(sequence, robot.robot_type)
             self._balance = _OneLegBalance(sequence, foot == "right")
