@@ -23,7 +23,8 @@ Phases:
 4. ``head_up``: the head level in the stand for at least ``HEAD_UP_CYCLES``, then until the
    torso has stopped swaying (:class:`CalmWatch`, at most ``CALM_MAX_CYCLES`` in all).
 5. ``kick``: the ``kick`` skill with the strength that the kick's calibration table gives for
-   the distance.
+   the distance; beyond the table's reach, and for ``"long"``, the kick's long version where
+   the file has one (:func:`wants_long`; the right foot's, which goes further at full strength).
 
 Once the kick has started it plays to its end. The head
 looks down while approaching: a ball at the toes lies about 65 deg below the horizon, outside a
@@ -161,6 +162,14 @@ class Alignment:
         return self.within(READY_ALONG_M, READY_ACROSS_M)
 
 
+def wants_long(motion: KickMotion, distance: float | str) -> bool:
+    """Whether ``distance`` (m or "long") lies beyond what ``motion``'s table reaches, so that
+    the kick's long version (``kick_motion(..., long=True)``) should play."""
+    return distance == LONG or (
+        not isinstance(distance, str) and distance > motion.distance_range_m[1]
+    )
+
+
 def strength_for(motion: KickMotion, distance: float | str) -> float:
     """The kick strength (0..1) for ``distance`` metres or ``"long"`` (full strength)."""
     if distance == LONG:
@@ -253,6 +262,7 @@ class BasicKickSkill(Skill):
         self.phase = "approach"
         self.foot: str | None = None
         self._strength = 1.0
+        self._long = False
         self._settled = 0
         self._shuffle: FootShuffle | None = None
         self._shuffles = 0
@@ -285,7 +295,9 @@ class BasicKickSkill(Skill):
             self.phase = "kick"  # from here on the kick plays to its end
         if self.phase == "kick":
             assert self.foot is not None
-            return context.manager.execute_sub_behavior("kick", self.foot, self._strength, True)
+            return context.manager.execute_sub_behavior(
+                "kick", self.foot, self._strength, True, self._long
+            )
         world = context.world
         if world.pose is None or world.ball.position is None:
             context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0)
@@ -353,6 +365,10 @@ class BasicKickSkill(Skill):
         alignment = self._seen_alignment(alignment, context, motion)
         if alignment.fine or (alignment.ready and self._shuffles >= MAX_SHUFFLES):
             self.phase = "head_up"
+            self._long = wants_long(motion, distance)
+            if self._long:  # the same ball spot: the alignment holds for both motions
+                robot_type = context.world.robot.robot_type
+                motion = kick_motion(robot_type, self.motions, self.foot, aligned=True, long=True)
             self._strength = strength_for(motion, distance)
         elif alignment.within_shuffle and self._shuffles < MAX_SHUFFLES:
             self.phase = "shuffle"

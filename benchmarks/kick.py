@@ -269,6 +269,17 @@ class ImpactResult:
         return self.ball_speed_m_s / self.foot_speed_m_s if self.foot_speed_m_s else math.nan
 
 
+def foot_link_state(robot: SimRobot, foot: str) -> tuple:
+    """Ground truth of ``foot``'s foot link (pybullet's ``getLinkState`` with velocities:
+    [0] position, [1] orientation quaternion, [6] linear velocity), for kick diagnostics."""
+    return pybullet.getLinkState(
+        robot.body_id,
+        robot.link_index("lfoot" if foot == "left" else "rfoot"),
+        computeLinkVelocity=1,
+        physicsClientId=robot.world.client,
+    )
+
+
 class _ImpactRecorder:
     """Per-cycle samples of the kicking foot's speed, the leg's joint speeds and the ball's."""
 
@@ -277,13 +288,7 @@ class _ImpactRecorder:
         self.samples: list[tuple[float, float, float, tuple[float, float, float]]] = []
 
     def __call__(self, session: Session, robot: SimRobot) -> None:
-        name = "lfoot" if self.foot == "left" else "rfoot"
-        state = pybullet.getLinkState(
-            robot.body_id,
-            robot.link_index(name),
-            computeLinkVelocity=1,
-            physicsClientId=robot.world.client,
-        )
+        state = foot_link_state(robot, self.foot)
         speeds = robot.joint_velocities()
         side = "l" if self.foot == "left" else "r"
         joints = tuple(math.degrees(speeds[f"{side}lj{k}"]) for k in (3, 4, 5))

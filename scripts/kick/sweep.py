@@ -2,7 +2,7 @@
 for this process only (an experiment runner; the packaged values stay as they are).
 
 Run: ``PYTHONPATH=. nice -n 5 python scripts/kick/sweep.py --layout-seeds 0 1 2
---set kick.TOUCHDOWN_FORCE_N=20 [--kicks FILE] [--distance 3]``. Prints the figures of
+--set kick.TOUCHDOWN_FORCE_N=20 [--kicks FILE] [--distance 3] [--verbose]``. Prints the figures of
 ``benchmarks.kick.basic_kick_figures`` per seed and the falls / misses summed over the seeds."""
 
 from __future__ import annotations
@@ -38,13 +38,16 @@ def main() -> None:
     parser.add_argument("--kicks", type=Path)
     parser.add_argument("--distance", default="3")
     parser.add_argument("--trials", type=int, default=20)
+    parser.add_argument(
+        "--verbose", action="store_true", help="print every trial (for scripts/kick/per_foot.py)"
+    )
     args = parser.parse_args()
     apply(args.set)
     settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
     asked = args.distance if args.distance == "long" else float(args.distance)
     falls = misses = 0
     for seed in args.layout_seeds:
-        f = basic_kick_figures(args.trials, 0, asked, seed, settings=settings)
+        f = basic_kick_figures(args.trials, 0, asked, seed, args.verbose, settings=settings)
         falls += int(f["basic_kick_falls"])
         misses += int(f["basic_kick_misses"])
         stages = " ".join(f"{stage} {f[f'basic_kick_falls_{stage}']:.0f}" for stage in FALL_STAGES)
