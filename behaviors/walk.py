@@ -85,6 +85,11 @@ class WalkParameters:
     #: sideways landing shift (m, to the right) per deg/s of roll rate and per degree of roll
     landing_roll_rate_gain: float = 0.0
     landing_roll_gain: float = 0.0
+    #: sideways landing shift (m) per degree of roll on the steps whose swing leg is on the
+    #: side the torso rolls to (the swing foot lands further out, under the fall); the other
+    #: steps keep their plan. 0 (the default) is off; ``walk`` to a target sets it from
+    #: ``go_to_landing_roll_lean_gain``
+    landing_roll_lean_gain: float = 0.0
     #: share of max_turn left at full forward or sideways speed (walking fast and turning hard
     #: trips the robot: the turning swing foot catches the support foot); in between it shrinks
     #: linearly
@@ -133,6 +138,11 @@ class WalkParameters:
     go_to_pitch_back_deg: float = math.inf
     go_to_pitch_back_release_deg: float = 3.0
     go_to_pitch_back_speed: float = 0.1
+    #: walking to a target, the engine's ``landing_roll_lean_gain``. Why (session 10): types
+    #: 2 and 4 fell turning at 60-120 deg/s (mostly on the spot) far from their targets, the
+    #: torso rolling to one side over 1-2 s (-10 -> -25 deg) while the feet kept their stance
+    #: width, then rolling over. 0 (the default) is off.
+    go_to_landing_roll_lean_gain: float = 0.0
     #: walking to a target: within this distance (m) of it the command has the
     #: ``odometry_drift`` taken off (feed-forward: the robot then really moves at the velocity
     #: it wants). Why (session 9): at the 0.2 m/s approach floor the drift (-0.1 m/s forward
@@ -406,6 +416,10 @@ class WalkEngine:
         shift = p.landing_pitch_rate_gain * rate + p.landing_pitch_gain * robot.pitch_deg
         roll_rate = float(robot.gyro_deg_s[1])  # + = rolling to the right
         side = p.landing_roll_rate_gain * roll_rate + p.landing_roll_gain * robot.roll_deg
+        next_left_swings = not self.generator.phase[1]
+        leaning_left = robot.roll_deg < 0.0
+        if p.landing_roll_lean_gain and leaning_left == next_left_swings:
+            side += p.landing_roll_lean_gain * robot.roll_deg  # the swing foot lands further out
         return replace(command, forward=command.forward + shift, left=command.left - side).clipped(
             p.step
         )
@@ -641,7 +655,11 @@ class WalkSkill(WalkSkillBase):
     def engine_parameters(self, params: WalkParameters) -> WalkParameters:
         """Walking to a target, the heading hold measures against
         ``go_to_heading_hold_reference``: the go-to's own heading loop keeps the heading."""
-        return replace(params, heading_hold_reference=params.go_to_heading_hold_reference)
+        return replace(
+            params,
+            heading_hold_reference=params.go_to_heading_hold_reference,
+            landing_roll_lean_gain=params.go_to_landing_roll_lean_gain,
+        )
 
     def validate(self, x: float, y: float, heading_deg: float | None = None) -> None:
         values = (x, y) if heading_deg is None else (x, y, heading_deg)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import replace
+from types import SimpleNamespace
 
 import pytest
 
@@ -166,12 +167,14 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
     assert inside.walk_to_max_speed == 0.75 > own.walk_to_max_speed
     assert inside.go_to_pitch_back_deg == math.inf
     assert inside.go_to_drift_feedforward_m == 0.0
+    assert inside.go_to_landing_roll_lean_gain == 0.0
     own_only = {
         "odometry_drift": own.odometry_drift,
         "go_to_drift_lookahead_s": own.go_to_drift_lookahead_s,
         "walk_to_max_speed": own.walk_to_max_speed,
         "go_to_pitch_back_deg": own.go_to_pitch_back_deg,
         "go_to_drift_feedforward_m": own.go_to_drift_feedforward_m,
+        "go_to_landing_roll_lean_gain": own.go_to_landing_roll_lean_gain,
     }
     assert replace(inside, **own_only) == own  # nothing else differs
 
@@ -415,3 +418,39 @@ def test_walk_to_targets_stops_within_10_cm_without_falling(robot_type):
         driver.session.close()
     assert max(errors) < 0.1, errors
     assert sum(errors) / len(errors) < 0.05, errors
+
+
+def _leaning(roll_deg: float) -> SimpleNamespace:
+    """A context whose robot stands still in the air but for a roll (+ = to the right)."""
+    robot = SimpleNamespace(gyro_deg_s=(0.0, 0.0, 0.0), pitch_deg=0.0, roll_deg=roll_deg)
+    return SimpleNamespace(world=SimpleNamespace(robot=robot))
+
+
+@pytest.mark.parametrize("roll", (-12.0, 12.0))
+def test_a_rolling_torso_opens_the_swing_foot_on_its_own_side_only(roll):
+    """Session 10: types 2 and 4 rolled over to one side turning on the spot, the feet at
+    their stance width. With ``landing_roll_lean_gain`` the step whose swing leg is on the side
+    the torso rolls to goes that way by the gain times the roll (its foot lands further out);
+    the other leg's steps keep their plan. Walking to a target it comes from
+    ``go_to_landing_roll_lean_gain``, off inside other skills (the kick) and for walk_velocity."""
+    gain = 0.002
+    params = replace(walk_parameters(2), landing_roll_lean_gain=gain)
+    turn = StepCommand(0.0, 0.0, 0.1)
+    moved = []
+    for left_swings_next in (True, False):
+        engine = WalkEngine(2, params)
+        if not left_swings_next:
+            engine.generator.next_targets(turn)  # the left leg's step under way
+        assert engine.generator.phase[1] != left_swings_next
+        moved.append(engine._balanced(turn, _leaning(roll)).left)
+    leaning_left = roll < 0.0
+    opened, kept = moved if leaning_left else moved[::-1]
+    assert opened == pytest.approx(-gain * roll)  # to the left (+) leaning left, else right
+    assert kept == 0.0
+    off = WalkEngine(2, walk_parameters(2))
+    assert off._balanced(turn, _leaning(roll)).left == 0.0
+    assert WalkSkill().engine_parameters(walk_parameters(2)).landing_roll_lean_gain > 0.0
+    assert WalkSkill().engine_parameters(walk_parameters(0)).landing_roll_lean_gain == 0.0
+    assert WalkVelocitySkill().engine_parameters(walk_parameters(2)).landing_roll_lean_gain == 0
+    inside = walk_parameters(2, inside_skill=True)
+    assert WalkSkill().engine_parameters(inside).landing_roll_lean_gain == 0.0
