@@ -650,3 +650,20 @@ def test_the_head_follows_a_ball_behind_only_while_a_walk_moves_the_body(skills,
     else:
         assert behavior.calls[-1][0] != "walk"
         assert "hj1" not in targets
+
+
+def test_a_search_keeps_the_turn_it_started_with_until_the_ball_is_seen():
+    """A stale estimate drifting across the heading must not flip the turn every cycle (the
+    robot then turns to and fro on the spot and never finds the ball)."""
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "walk_velocity")
+
+    def turn_with(ball, since_seen):
+        w = world(ball=ball, pose=(0.0, 0.0, 0.0))
+        w.ball.time_since_seen = since_seen
+        strategy.decide(w, behavior)
+        return behavior.calls[-1]
+
+    assert turn_with((3.0, -0.5), 5.0) == ("walk_velocity", 0.0, 0.0, -SEARCH_TURN_DEG_S)
+    assert turn_with((3.0, 0.5), 5.1) == ("walk_velocity", 0.0, 0.0, -SEARCH_TURN_DEG_S)
+    assert turn_with((3.0, 0.5), 0.0)[0] != "walk_velocity"  # seen: the search is over
+    assert turn_with((3.0, 0.5), 5.0) == ("walk_velocity", 0.0, 0.0, SEARCH_TURN_DEG_S)
