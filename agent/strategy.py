@@ -978,7 +978,7 @@ def _look_towards_ball(world, behavior) -> None:
     ball, pose = world.ball.position, world.pose
     if current is None or current.name not in HEAD_FREE_SKILLS or ball is None or pose is None:
         return
-    behavior.commands.set_targets({"hj1": head_yaw_for(_bearing(pose, ball))})
+    behavior.commands.set_targets({"hj1": head_yaw_for(world.bearing_to(ball))})
 
 
 def search_turn_deg_s(world) -> float:
@@ -992,7 +992,7 @@ def search_turn_deg_s(world) -> float:
     ball, pose = world.ball.position, world.pose
     if ball is None or pose is None:
         return SEARCH_TURN_DEG_S
-    return -SEARCH_TURN_DEG_S if _bearing(pose, ball) < 0.0 else SEARCH_TURN_DEG_S
+    return -SEARCH_TURN_DEG_S if world.bearing_to(ball) < 0.0 else SEARCH_TURN_DEG_S
 
 
 def _last_seen_at_feet(world) -> bool:
@@ -1004,11 +1004,6 @@ def _ball_within(world, radius_m: float) -> bool:
     """Whether the ball estimate lies within ``radius_m`` of the torso estimate."""
     ball, pose = world.ball.position, world.pose
     return ball is not None and pose is not None and math.dist((pose.x, pose.y), ball) < radius_m
-
-
-def _bearing(pose, point: tuple[float, float]) -> float:
-    """Bearing (deg, + = to the left) of ``point`` from a pose's torso heading."""
-    return wrap_deg(_heading_to((pose.x, pose.y), point) - pose.heading_deg)
 
 
 def _heading_to(origin: tuple[float, float], point: tuple[float, float]) -> float:

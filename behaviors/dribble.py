@@ -54,7 +54,7 @@ from behaviors.mirror import (
     mirror_vector_native,
 )
 from behaviors.skill import Skill, SkillContext
-from behaviors.walk import WalkEngine, WalkParameters, _read_parameters, engine_to_continue
+from behaviors.walk import WalkEngine, WalkParameters, _read_parameters, carry_on_gait
 from world.localization import wrap_deg
 from world.nao_model import ROBOT_TYPES
 from world.perception import ForceResistance
@@ -497,8 +497,6 @@ class DribbleSkill(Skill):
         self.last_command: tuple[float, float, float] = (0.0, 0.0, 0.0)
         #: coming out of a sharp turn (see :func:`still_turning`)
         self._turning = False
-        #: the first cycle after a (re)start: a walk under way carries on into the dribble
-        self._starting = True
 
     def reset(self) -> None:
         if self._engine is not None:
@@ -506,7 +504,6 @@ class DribbleSkill(Skill):
         self.last_inputs = None
         self.last_command = (0.0, 0.0, 0.0)
         self._turning = False
-        self._starting = True
 
     @property
     def gait_engine(self) -> WalkEngine | None:
@@ -559,11 +556,8 @@ class DribbleSkill(Skill):
         if mirror != self._mirror:  # the engine's feet are in the other side's frame
             engine.reset()
             self._mirror = mirror
-        if self._starting:
-            self._starting = False
-            other = None if mirror else engine_to_continue(context, self.name)
-            if other is not None and other is not engine:
-                engine.continue_from(other)
+        if not mirror:  # the mirrored gait's engine walks in the other side's frame
+            carry_on_gait(context, self.name, engine)
         gait = dribble_gait(kind, robot_type, self.data_file)
         inputs = _perceived_inputs(context, direction_deg)
         if inputs is None:  # lost the ball or the own pose: tread on the spot until seen

@@ -509,22 +509,25 @@ class WalkEngine:
             )
 
 
-def engine_to_continue(context: SkillContext, skill_name: str) -> WalkEngine | None:
-    """The walk engine that top-level skill ``skill_name``, starting this cycle, carries on
-    (:meth:`WalkEngine.continue_from`): the engine of the previous top-level behaviour if that
-    skill walks with one (``gait_engine``) and was mid-step in the cycle just before; None
-    otherwise (a start from a stand, a sub-behaviour, a skill that does not walk)."""
+def carry_on_gait(context: SkillContext, skill_name: str, engine: WalkEngine) -> None:
+    """On the first cycle of top-level skill ``skill_name``'s run, let ``engine`` carry on the
+    steps of the previous top-level behaviour (:meth:`WalkEngine.continue_from`) if that skill
+    walks with an engine (``gait_engine``) that was mid-step in the cycle just before; on any
+    other cycle, and after a start from a stand, a sub-behaviour or a skill that does not
+    walk, nothing. The manager's run length says which cycle is the first, so the skills
+    keep no flag of their own."""
     manager = context.manager
     current = getattr(manager, "current", None)
     previous = getattr(manager, "previous", None)
     if current is None or previous is None or current.name != skill_name or current.cycles != 1:
-        return None
+        return
     if tuple(getattr(manager, "running", ())) != (skill_name,):
-        return None
-    engine = getattr(manager.skill(previous.name), "gait_engine", None)
-    if engine is None or not engine.is_stepping or engine.last_cycle != manager.cycle - 1:
-        return None
-    return engine
+        return
+    other = getattr(manager.skill(previous.name), "gait_engine", None)
+    if other is None or other is engine or not other.is_stepping:
+        return
+    if other.last_cycle == manager.cycle - 1:
+        engine.continue_from(other)
 
 
 def _inside_another_skill(context: SkillContext) -> bool:
@@ -546,18 +549,15 @@ class WalkSkillBase(Skill):
         self._file: Path = WALK_FILE
         #: whether the engine was made for a walk run by another skill (``inside_skills``)
         self._inside = False
-        #: the first cycle after a (re)start: the gait of the skill before may carry on
-        self._starting = True
 
     def reset(self) -> None:
         if self._engine is not None:
             self._engine.reset()
-        self._starting = True
 
     @property
     def gait_engine(self) -> WalkEngine | None:
         """The engine this skill walks with (None before its first cycle): a walking skill
-        that takes over carries on its steps (:func:`engine_to_continue`)."""
+        that takes over carries on its steps (:func:`carry_on_gait`)."""
         return self._engine
 
     def engine(self, context: SkillContext) -> WalkEngine:
@@ -574,11 +574,7 @@ class WalkSkillBase(Skill):
             self._engine = WalkEngine(robot_type, self.engine_parameters(params))
             self._file = self.walk_file
             self._inside = inside
-        if self._starting:
-            self._starting = False
-            other = engine_to_continue(context, self.name)
-            if other is not None and other is not self._engine:
-                self._engine.continue_from(other)
+        carry_on_gait(context, self.name, self._engine)
         return self._engine
 
     def engine_parameters(self, params: WalkParameters) -> WalkParameters:

@@ -59,7 +59,12 @@ class Seen:
 
 
 def world(ball, pose, teammates=(), play_mode="PlayOn", unum=9, heard=(), opponents=()):
+    def bearing_to(point):  # as WorldModel.bearing_to
+        angle = math.degrees(math.atan2(point[1] - pose[1], point[0] - pose[0]))
+        return (angle - pose[2] + 180.0) % 360.0 - 180.0
+
     return SimpleNamespace(
+        bearing_to=bearing_to,
         play_mode=play_mode,
         side="left",
         unum=unum,
