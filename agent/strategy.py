@@ -65,6 +65,8 @@ HOLD_HEADING_STEP_DEG = 30.0
 #: (:func:`head_yaw_for`): within HEAD_STILL_DEG of the torso's heading the head looks ahead,
 #: and it turns at most HEAD_YAW_MAX_DEG (the neck allows 120).
 HEAD_FREE_SKILLS = ("walk", "walk_velocity")
+#: a finishing aim (:attr:`AttackConfig.finish_m`) lies this far beyond the goal line (m)
+FINISH_AHEAD_M = 1.0
 HEAD_STILL_DEG = 30.0
 HEAD_YAW_MAX_DEG = 90.0
 
@@ -132,6 +134,15 @@ class AttackConfig:
     #: ``keeper_near_m`` of the goal centre (0: always aim at the centre)
     aim_side_m: float = 0.6
     keeper_near_m: float = 2.5
+    #: with the ball this close to the opponent goal line (m) and in front of the goal mouth
+    #: (``finish_post_margin_m`` inside the posts), aim straight over the line instead of at
+    #: the aim point on it (0: never). Why: the aim points lie ON the goal line, so as the
+    #: ball nears it the line to the aim turns sideways; a ball 0.16 m before the line and
+    #: 0.8 m off the middle was dribbled towards the far post, across the goal mouth, until
+    #: the keeper came back (``benchmarks/attack.py --keeper --trials 1 --seconds 40
+    #: --start-x 9 --trace 1``)
+    finish_m: float = 1.5
+    finish_post_margin_m: float = 0.1
     #: aim ``aim_post_margin_m`` inside the post of the side that the keeper (as above)
     #: leaves most open as seen from the ball (:func:`agent.attack_keeper.open_side`), kept
     #: until the other side is better by ``aim_switch_deg`` (0: the rule of ``aim_side_m``)
@@ -146,6 +157,12 @@ class AttackConfig:
     #: count a stall only while dribbling: walking round a ball that lies still is no stall
     #: (otherwise a player lining up near the goal starts the slow stall shot at a free ball)
     stall_only_dribbling: bool = False
+    #: count a stall only with an opponent this close to the ball (m; 0: any stall). Why: a
+    #: ball lying still while this player walks up to it is no duel, yet within 4 s of the
+    #: goal it started the slow stall shot (``basic_kick`` lining up for 6 s and more) at a
+    #: free ball 1.2 m before an empty goal, and the keeper came back and took it
+    #: (``benchmarks/attack.py --keeper --trials 1 --seconds 40 --start-x 9 --trace 1``)
+    stall_opponent_m: float = 1.0
     #: an opponent within ``yield_opponent_m`` of the ball on its far side while this player
     #: is within ``yield_reach_m`` of it (:func:`agent.attack_keeper.contested`) makes the
     #: player stop and step in place for up to ``yield_s``, instead of walking into the ball
@@ -599,8 +616,12 @@ class Strategy:
 
     def aim(self, world) -> tuple[float, float]:
         """The point in the opponent goal to play the ball to: the centre, or the side away
-        from an opponent standing near the goal centre (its goalkeeper)."""
+        from an opponent standing near the goal centre (its goalkeeper); straight over the
+        line from a ball right in front of the goal mouth (:attr:`AttackConfig.finish_m`)."""
         attack = self.config.attack
+        ball = world.ball.position
+        if ball is not None and _in_front_of_goal_mouth(ball, attack):
+            return (HALF_LENGTH + FINISH_AHEAD_M, ball[1])
         goal = (HALF_LENGTH, 0.0)
         opponents = getattr(world, "opponents", None)
         if opponents is None or world.time is None or attack.aim_side_m <= 0.0:
@@ -838,6 +859,11 @@ class Strategy:
         at_ball = math.dist((world.pose.x, world.pose.y), ball) < attack.dribble_keep_m
         if attack.stall_only_dribbling and not self._dribbling:
             at_ball = False
+        if at_ball and attack.stall_opponent_m > 0.0:
+            at_ball = any(
+                math.dist(p, ball) < attack.stall_opponent_m
+                for p in self._opponent_positions(world)
+            )
         if not at_ball or attack.stall_s <= 0.0:
             self._stall.reset()  # walking up to a ball that lies still is no stall
         elif (
@@ -931,6 +957,15 @@ class Strategy:
             behavior.execute("pose", "stand")
             return
         _walk_facing_ball(world, behavior, self.home(world.unum))
+
+
+def _in_front_of_goal_mouth(ball: tuple[float, float], attack: AttackConfig) -> bool:
+    """Whether the ball lies within ``finish_m`` of the opponent goal line, short of it, and
+    ``finish_post_margin_m`` inside the posts."""
+    return (
+        0.0 < HALF_LENGTH - ball[0] < attack.finish_m
+        and abs(ball[1]) < GOAL_WIDTH / 2 - attack.finish_post_margin_m
+    )
 
 
 def _walk_facing_ball(world, behavior, place: tuple[float, float]) -> None:

@@ -368,8 +368,47 @@ def test_walking_round_a_still_ball_near_the_goal_starts_no_stall_shot_if_told_s
             strategy.decide(scene, behavior)
         return behavior.calls[-1][0]
 
-    assert last_skill_after_walking_round(AttackConfig()) == "basic_kick"
-    assert last_skill_after_walking_round(AttackConfig(stall_only_dribbling=True)) == "walk"
+    any_still_ball = AttackConfig(stall_opponent_m=0.0)
+    assert last_skill_after_walking_round(any_still_ball) == "basic_kick"
+    only_dribbling = AttackConfig(stall_opponent_m=0.0, stall_only_dribbling=True)
+    assert last_skill_after_walking_round(only_dribbling) == "walk"
+
+
+def test_a_still_ball_with_no_opponent_near_starts_no_stall_shot():
+    def last_skill_at_a_still_ball(attack: AttackConfig, rival_at: tuple[float, float]) -> str:
+        strategy, behavior = (
+            Strategy(StrategyConfig(attack=attack)),
+            RecordingBehavior("walk", "dribble", "basic_kick"),
+        )
+        rival = SimpleNamespace(unum=1, position=rival_at)
+        scene = world((12.5, 0.0), (12.2, 0.0, 0.0), opponents=[rival])
+        for k in range(260):  # 5.2 s at a ball that does not move
+            scene.time = 10.0 + 0.02 * k
+            strategy.decide(scene, behavior)
+        return behavior.calls[-1][0]
+
+    far, near = (14.5, 0.0), (12.9, 0.2)
+    assert last_skill_at_a_still_ball(AttackConfig(stall_opponent_m=0.0), far) == "basic_kick"
+    assert last_skill_at_a_still_ball(AttackConfig(), far) == "dribble"
+    assert last_skill_at_a_still_ball(AttackConfig(), near) == "basic_kick"
+
+
+@pytest.mark.parametrize(
+    ("ball", "finishing"),
+    [((14.8, -0.8), True), ((14.8, 1.0), False), ((13.0, -0.8), False), ((15.1, 0.0), False)],
+)
+def test_a_ball_just_before_the_goal_mouth_is_aimed_straight_over_the_line(
+    ball, finishing
+):
+    keeper = SimpleNamespace(unum=1, position=(14.9, -0.3))
+    scene = world(ball, (ball[0] - 0.3, ball[1], 0.0), opponents=[keeper])
+    on_the_line = Strategy(StrategyConfig(attack=AttackConfig(finish_m=0.0))).aim(scene)
+    aim = Strategy().aim(scene)
+    assert on_the_line[0] == pytest.approx(15.0)
+    if finishing:
+        assert aim == pytest.approx((16.0, ball[1]))
+    else:
+        assert aim == pytest.approx(on_the_line)
 
 
 def test_a_dribbler_that_ends_up_over_the_ball_steps_off_it():
@@ -383,7 +422,7 @@ def test_a_dribbler_that_ends_up_over_the_ball_steps_off_it():
 
 def test_a_stall_near_the_goal_is_answered_with_a_shot_that_runs_to_its_end():
     strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble", "basic_kick")
-    keeper = SimpleNamespace(unum=1, position=(14.2, 0.0))
+    keeper = SimpleNamespace(unum=1, position=(13.0, 0.3))  # at the ball, blocking it
     scene = world((12.5, 0.0), (12.2, 0.0, 0.0), opponents=[keeper])
     for k in range(260):
         scene.time = 10.0 + 0.02 * k
@@ -407,14 +446,17 @@ def test_a_stall_beside_the_goal_is_escaped_to_its_front_if_told_so():
             strategy.decide(scene, behavior)
         return behavior.calls
 
-    assert calls_after_a_stall_beside_the_goal(AttackConfig())[-1][0] == "basic_kick"
-    calls = calls_after_a_stall_beside_the_goal(AttackConfig(stall_shot_max_y_m=1.0))
+    any_still_ball = AttackConfig(stall_opponent_m=0.0)
+    assert calls_after_a_stall_beside_the_goal(any_still_ball)[-1][0] == "basic_kick"
+    calls = calls_after_a_stall_beside_the_goal(
+        AttackConfig(stall_opponent_m=0.0, stall_shot_max_y_m=1.0)
+    )
     assert all(call[0] != "basic_kick" for call in calls)
     name, *args = calls[-1]
     heading = args[1] if name == "dribble" else args[2]
     assert heading == pytest.approx(-90.0)  # towards (13, 0), in front of the goal centre
     # inside the posts' line the stall shot is still taken
-    inside = AttackConfig(stall_shot_max_y_m=2.0)
+    inside = AttackConfig(stall_opponent_m=0.0, stall_shot_max_y_m=2.0)
     assert calls_after_a_stall_beside_the_goal(inside)[-1][0] == "basic_kick"
 
 
