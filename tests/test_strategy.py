@@ -15,6 +15,7 @@ from agent.strategy import (
     SEARCH_TURN_DEG_S,
     AttackConfig,
     HoldWatch,
+    KeeperConfig,
     Strategy,
     StrategyConfig,
     SupportConfig,
@@ -186,6 +187,22 @@ def test_the_goalkeeper_guards_its_line_and_clears_a_ball_near_its_goal():
     keeper.decide(world((-13.0, 0.5), (-14.0, 0.0, 0.0), unum=1), behavior)
     assert behavior.calls[-1][0] == "walk"
     assert behavior.calls[-1][1] > -13.5  # towards the ball, not back to its line
+
+
+def test_the_goalkeeper_keeps_its_place_while_a_far_ball_moves_a_little_if_told_so():
+    def keeper_walk(ball: tuple[float, float], keeper: KeeperConfig) -> tuple:
+        behavior = RecordingBehavior("walk", "dribble")
+        Strategy(StrategyConfig(keeper=keeper)).decide(
+            world(ball, (-14.3, 0.0, 0.0), unum=1), behavior
+        )
+        return behavior.calls[-1]
+
+    stepped = [keeper_walk((0.0, y), KeeperConfig(side_step_m=0.2)) for y in (0.65, 0.7, 0.75)]
+    assert stepped[0] == stepped[1] == stepped[2]  # one place and heading
+    name, _, y, heading = stepped[0]
+    assert name == "walk" and y == pytest.approx(0.2) and heading % 30.0 == 0.0
+    smooth = [keeper_walk((0.0, y), KeeperConfig()) for y in (0.65, 0.7, 0.75)]
+    assert len({call[2] for call in smooth}) == 3  # every move of the ball moves the place
 
 
 def test_a_player_in_front_of_the_ball_goes_round_it():
@@ -397,9 +414,7 @@ def test_a_still_ball_with_no_opponent_near_starts_no_stall_shot():
     ("ball", "finishing"),
     [((14.8, -0.8), True), ((14.8, 1.0), False), ((13.0, -0.8), False), ((15.1, 0.0), False)],
 )
-def test_a_ball_just_before_the_goal_mouth_is_aimed_straight_over_the_line(
-    ball, finishing
-):
+def test_a_ball_just_before_the_goal_mouth_is_aimed_straight_over_the_line(ball, finishing):
     keeper = SimpleNamespace(unum=1, position=(14.9, -0.3))
     scene = world(ball, (ball[0] - 0.3, ball[1], 0.0), opponents=[keeper])
     on_the_line = Strategy(StrategyConfig(attack=AttackConfig(finish_m=0.0))).aim(scene)
