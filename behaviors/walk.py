@@ -192,19 +192,30 @@ def _read_parameters(data: dict[str, Any], source: str) -> WalkParameters:
     return WalkParameters(step=StepParameters(**step_data), **values)
 
 
+#: the per-type sub-blocks ``inside_skills`` may hold
+_TYPE_BLOCKS = frozenset(f"type{t}" for t in ROBOT_TYPES)
+
+
 @cache
 def walk_parameters(
     robot_type: int, path: Path = WALK_FILE, inside_skill: bool = False
 ) -> WalkParameters:
     """The walk parameters of ``robot_type``: the file's ``default`` block overridden by its
     ``type<N>`` block (both may hold a ``step`` sub-block), and with ``inside_skill`` (the walk
-    run by another skill) the ``inside_skills`` block's keys on top."""
+    run by another skill) the ``inside_skills`` block's keys on top, then its own ``type<N>``
+    sub-block's (a type's plain-walk change that the kicks must not see)."""
     if robot_type not in ROBOT_TYPES:
         raise ValueError(f"robot type must be one of {ROBOT_TYPES}, got {robot_type!r}")
     data = yaml.safe_load(path.read_text()) or {}
     base = dict(data.get("default") or {})
     own = dict(data.get(f"type{robot_type}") or {})
-    nested = dict(data.get("inside_skills") or {}) if inside_skill else {}
+    nested: dict[str, Any] = {}
+    if inside_skill:
+        inside = dict(data.get("inside_skills") or {})
+        inside_own = dict(inside.get(f"type{robot_type}") or {})
+        inside = {k: v for k, v in inside.items() if k not in _TYPE_BLOCKS}
+        inside_step = {**(inside.get("step") or {}), **(inside_own.get("step") or {})}
+        nested = {**inside, **inside_own, "step": inside_step}
     step = {**(base.get("step") or {}), **(own.get("step") or {}), **(nested.get("step") or {})}
     merged = {**base, **own, **nested, "step": step}
     return _read_parameters(merged, f"{path} (type{robot_type})")
@@ -426,8 +437,9 @@ class WalkEngine:
 
     def _leg_angles(self, targets: FootTargets, context: SkillContext) -> dict[str, float]:
         pitch = -targets.lean  # soles flat on the ground under a leaning torso
-        left = self.ik.solve_sole("left", targets.left, 0.0, pitch, targets.left_yaw)
-        right = self.ik.solve_sole("right", targets.right, 0.0, pitch, targets.right_yaw)
+        left_pitch, right_pitch = pitch - targets.left_pitch, pitch - targets.right_pitch
+        left = self.ik.solve_sole("left", targets.left, 0.0, left_pitch, targets.left_yaw)
+        right = self.ik.solve_sole("right", targets.right, 0.0, right_pitch, targets.right_yaw)
         angles = {**left.angles_deg, **right.angles_deg}
         self._imu_corrections(angles, targets, context)
         return angles

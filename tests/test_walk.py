@@ -179,6 +179,89 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
     assert replace(inside, **own_only) == own  # nothing else differs
 
 
+def test_inside_skills_type_blocks_override_one_type_only(tmp_path):
+    """``inside_skills: {typeN: ...}`` changes the walk inside other skills of that type alone."""
+    path = with_settings(["inside_skills.type2.step.swing_height=0.02"], tmp_path, WALK_FILE)
+    assert walk_parameters(2, path, inside_skill=True).step.swing_height == 0.02
+    assert walk_parameters(2, path).step.swing_height == walk_parameters(2).step.swing_height
+    assert walk_parameters(1, path, inside_skill=True) == walk_parameters(1, inside_skill=True)
+
+
+def _steady_steps(params: StepParameters, command: StepCommand, steps: int = 6) -> list:
+    generator = StepGenerator(params)
+    return [generator.next_targets(command) for _ in range(8 * steps)]
+
+
+def test_heel_strike_lands_the_swing_foot_toe_up_and_rolls_it_flat():
+    """Session 11: at full speed the swing foot lands toe-up (its toe rising from
+    ``heel_strike_from`` of the step) and rolls flat over ``heel_strike_cycles`` cycles of
+    stance, pitched about a point ``heel_pivot`` behind the sole point (which rises by
+    ``heel_pivot * sin(pitch)``); off, the targets are the flat-foot walk's, bit for bit."""
+    flat = StepParameters(max_forward=0.14, swing_height=0.04)
+    heel = replace(flat, speed_heel_strike=0.12, heel_strike_from=0.6, heel_pivot=0.1)
+    full = StepCommand(0.14)
+    plain, pitched = _steady_steps(flat, full)[-8:], _steady_steps(heel, full)[-8:]
+    for a, b in zip(plain, pitched, strict=True):
+        assert (a.left_pitch, a.right_pitch) == (0.0, 0.0)
+        swing, support = (
+            (b.left_pitch, b.right_pitch) if b.left_active else (b.right_pitch, b.left_pitch)
+        )
+        s = (b.t + 1) / 8
+        assert (swing == 0.0) == (s <= 0.6)  # the toe rises late in the swing ...
+        assert support == pytest.approx(0.06 if b.t == 0 else 0.0)  # ... and rolls flat
+        flat_swing = a.left if a.left_active else a.right
+        heel_swing = b.left if b.left_active else b.right
+        if b.t == 7:  # landed toe-up, the sole point 0.1 sin(0.12) m higher
+            assert swing == pytest.approx(0.12)
+            lift = 0.1 * math.sin(0.12)
+            assert heel_swing[2] - flat_swing[2] == pytest.approx(lift, abs=0.002)
+    assert _steady_steps(replace(flat, speed_heel_strike=0.0), full) == _steady_steps(flat, full)
+
+
+@pytest.mark.parametrize(
+    "command", (StepCommand(0.0, 0.05), StepCommand(-0.05), StepCommand(0.0, 0.0, 0.2))
+)
+def test_heel_strike_stays_out_of_sideways_backward_and_turning_steps(command):
+    params = StepParameters(max_forward=0.14, speed_heel_strike=0.12)
+    for targets in _steady_steps(params, command):
+        assert (targets.left_pitch, targets.right_pitch) == (0.0, 0.0)
+    generator = StepGenerator(params)
+    for _ in range(23):
+        generator.next_targets(StepCommand(0.14))
+    stand = generator.stand_targets()
+    assert (stand.left_pitch, stand.right_pitch) == (0.0, 0.0)
+
+
+def test_the_engine_turns_a_toe_up_pitch_into_a_toe_up_foot():
+    """The IK gets the sole pitched toe-up (forward kinematics: the foot's forward axis points
+    upwards relative to the torso by the lean plus the heel strike's pitch)."""
+    from world.kinematics import body_transforms
+    from world.nao_model import robot_spec
+
+    engine = WalkEngine(0, walk_parameters(0))
+    generator = StepGenerator(replace(engine.params.step, lean=0.0, speed_lean=0.0))
+    targets = replace(generator.stand_targets(), left_pitch=0.2)
+    context = SimpleNamespace(
+        world=SimpleNamespace(
+            robot=SimpleNamespace(pitch_deg=0.0, roll_deg=0.0, gyro_deg_s=(0.0, 0.0, 0.0))
+        )
+    )
+    angles = engine._leg_angles(targets, context)
+    feet = body_transforms(robot_spec(0), angles)
+    up = {side: float(feet[f"{side}foot"][2][1]) for side in ("l", "r")}  # forward axis, z
+    assert up["l"] == pytest.approx(math.sin(0.2), abs=0.01)
+    assert up["r"] == pytest.approx(0.0, abs=0.01)
+
+
+def test_the_heel_strike_settings_are_checked():
+    with pytest.raises(ValueError):
+        StepParameters(speed_heel_strike=-0.1)
+    with pytest.raises(ValueError):
+        StepParameters(heel_strike_cycles=8)
+    with pytest.raises(ValueError):
+        StepParameters(heel_strike_from=1.0)
+
+
 def test_a_pitched_back_torso_holds_the_restart_to_a_backward_step():
     """Session 8: type 2 fell backwards walking off towards a target with its torso pitched
     back (its landing correction's backward steps fought the forward command), so while it
