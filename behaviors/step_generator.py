@@ -94,6 +94,9 @@ class StepParameters:
     heel_strike_from: float = 0.6
     heel_strike_cycles: int = 2
     heel_pivot: float = 0.1
+    #: sole shift forward (m) at a full forward step while the heel strike is on (a type
+    #: whose soles sit far back: type 4 rolled over sideways within 2 s at full speed)
+    heel_strike_foot_forward: float = 0.0
 
     def __post_init__(self) -> None:
         if self.step_cycles < 2:
@@ -361,6 +364,8 @@ class StepGenerator:
         share = self._speed_now if speed_share is None else speed_share
         lean = p.lean + p.speed_lean * share
         forward = p.foot_forward + p.speed_foot_forward * share
+        if p.speed_heel_strike > 0.0:
+            forward += p.heel_strike_foot_forward * share
         left_z = -p.torso_height + (lift if self._left_active else 0.0)
         right_z = -p.torso_height + (0.0 if self._left_active else lift)
         swing_pitch, support_pitch = (

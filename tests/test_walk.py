@@ -168,6 +168,8 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
     assert inside.go_to_pitch_back_deg == math.inf
     assert inside.go_to_drift_feedforward_m == 0.0
     assert inside.go_to_landing_roll_lean_gain == 0.0
+    # session 11's heel strike stays out of the kicks
+    assert inside.step.speed_heel_strike == 0.0 < own.step.speed_heel_strike
     own_only = {
         "odometry_drift": own.odometry_drift,
         "go_to_drift_lookahead_s": own.go_to_drift_lookahead_s,
@@ -175,6 +177,7 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
         "go_to_pitch_back_deg": own.go_to_pitch_back_deg,
         "go_to_drift_feedforward_m": own.go_to_drift_feedforward_m,
         "go_to_landing_roll_lean_gain": own.go_to_landing_roll_lean_gain,
+        "step": replace(inside.step, speed_heel_strike=own.step.speed_heel_strike),
     }
     assert replace(inside, **own_only) == own  # nothing else differs
 
@@ -251,6 +254,32 @@ def test_the_engine_turns_a_toe_up_pitch_into_a_toe_up_foot():
     up = {side: float(feet[f"{side}foot"][2][1]) for side in ("l", "r")}  # forward axis, z
     assert up["l"] == pytest.approx(math.sin(0.2), abs=0.01)
     assert up["r"] == pytest.approx(0.0, abs=0.01)
+
+
+@pytest.mark.parametrize("robot_type", ROBOT_TYPES)
+def test_walking_to_a_target_lands_flat_and_walk_velocity_with_the_heel_strike(robot_type):
+    """Session 11: the heel strike made random-target walks fall (walk.yaml), so ``walk`` to a
+    target keeps the flat-foot landing (``go_to_heel_strike: false``) and only
+    ``walk_velocity`` lands toe-up; with the heel strike off, type 4's sole shift goes too."""
+    params = walk_parameters(robot_type)
+    assert params.step.speed_heel_strike > 0.0 and not params.go_to_heel_strike
+    walking = WalkSkill().engine_parameters(params)
+    assert walking.step == replace(params.step, speed_heel_strike=0.0)
+    assert WalkVelocitySkill().engine_parameters(params).step == params.step
+    full = StepCommand(params.step.max_forward)
+    flat = replace(params.step, speed_heel_strike=0.0, heel_strike_foot_forward=0.0)
+    assert _steady_steps(walking.step, full) == _steady_steps(flat, full)
+
+
+def test_the_heel_strike_foot_forward_shifts_the_soles_only_with_the_heel_strike():
+    params = StepParameters(max_forward=0.14, speed_heel_strike=0.12, heel_strike_foot_forward=0.01)
+    shifted = _steady_steps(params, StepCommand(0.14))[-1]
+    plain = _steady_steps(replace(params, heel_strike_foot_forward=0.0), StepCommand(0.14))[-1]
+    assert shifted.left[0] - plain.left[0] == pytest.approx(0.01 * math.cos(params.lean))
+    off = replace(params, speed_heel_strike=0.0)
+    assert _steady_steps(off, StepCommand(0.14)) == _steady_steps(
+        replace(off, heel_strike_foot_forward=0.0), StepCommand(0.14)
+    )
 
 
 def test_the_heel_strike_settings_are_checked():
@@ -467,6 +496,16 @@ def test_walk_forward_reaches_0_7_mps_on_every_type(robot_type):
     assert not fell
     assert forward >= 0.7
     assert abs(left) < 0.2 * forward  # walking straight on, not drifting off sideways
+
+
+def test_the_heel_strike_walks_faster_type0(tmp_path):
+    """Session 11: type 0 at full speed, benchmarks/locomotion.py's figure: 0.796 m/s with the
+    heel strike, 0.730 without."""
+    path = with_settings(["type0.step.speed_heel_strike=0.0"], tmp_path, WALK_FILE)
+    flat, _, _, fell_flat = measure_velocity(0, (1.0, 0.0, 0.0), 3.0, walk_file=path)
+    heel, _, _, fell = measure_velocity(0, (1.0, 0.0, 0.0), 3.0)
+    assert not fell and not fell_flat
+    assert heel > flat + 0.03
 
 
 @pytest.mark.parametrize("robot_type", (0, 1))
