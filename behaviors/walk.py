@@ -146,8 +146,8 @@ class WalkParameters:
     #: whether ``walk`` to a target lands with the step's heel strike
     #: (``StepParameters.speed_heel_strike``) as ``walk_velocity`` does. Why off in
     #: walk.yaml (session 11): in random target walks (at most 0.65 m/s) it added falls
-    #: (scripts/walk_seed_sets.py, 12 sets a group: types 0 / 1 0 -> 1 on one group each,
-    #: type 2 0 -> 1, type 3 0 -> 4 on the other)
+    #: (scripts/walk_seed_sets.py, two groups of 12 sets: types 0 and 1 0 -> 1 each on one,
+    #: types 2 and 3 0 -> 1 and 0 -> 4 on the other)
     go_to_heel_strike: bool = True
     #: walking to a target: within this distance (m) of it the command has the
     #: ``odometry_drift`` taken off (feed-forward: the robot then really moves at the velocity
@@ -198,30 +198,19 @@ def _read_parameters(data: dict[str, Any], source: str) -> WalkParameters:
     return WalkParameters(step=StepParameters(**step_data), **values)
 
 
-#: the per-type sub-blocks ``inside_skills`` may hold
-_TYPE_BLOCKS = frozenset(f"type{t}" for t in ROBOT_TYPES)
-
-
 @cache
 def walk_parameters(
     robot_type: int, path: Path = WALK_FILE, inside_skill: bool = False
 ) -> WalkParameters:
     """The walk parameters of ``robot_type``: the file's ``default`` block overridden by its
     ``type<N>`` block (both may hold a ``step`` sub-block), and with ``inside_skill`` (the walk
-    run by another skill) the ``inside_skills`` block's keys on top, then its own ``type<N>``
-    sub-block's (a type's plain-walk change that the kicks must not see)."""
+    run by another skill) the ``inside_skills`` block's keys on top."""
     if robot_type not in ROBOT_TYPES:
         raise ValueError(f"robot type must be one of {ROBOT_TYPES}, got {robot_type!r}")
     data = yaml.safe_load(path.read_text()) or {}
     base = dict(data.get("default") or {})
     own = dict(data.get(f"type{robot_type}") or {})
-    nested: dict[str, Any] = {}
-    if inside_skill:
-        inside = dict(data.get("inside_skills") or {})
-        inside_own = dict(inside.get(f"type{robot_type}") or {})
-        inside = {k: v for k, v in inside.items() if k not in _TYPE_BLOCKS}
-        inside_step = {**(inside.get("step") or {}), **(inside_own.get("step") or {})}
-        nested = {**inside, **inside_own, "step": inside_step}
+    nested = dict(data.get("inside_skills") or {}) if inside_skill else {}
     step = {**(base.get("step") or {}), **(own.get("step") or {}), **(nested.get("step") or {})}
     merged = {**base, **own, **nested, "step": step}
     return _read_parameters(merged, f"{path} (type{robot_type})")

@@ -182,14 +182,6 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
     assert replace(inside, **own_only) == own  # nothing else differs
 
 
-def test_inside_skills_type_blocks_override_one_type_only(tmp_path):
-    """``inside_skills: {typeN: ...}`` changes the walk inside other skills of that type alone."""
-    path = with_settings(["inside_skills.type2.step.swing_height=0.02"], tmp_path, WALK_FILE)
-    assert walk_parameters(2, path, inside_skill=True).step.swing_height == 0.02
-    assert walk_parameters(2, path).step.swing_height == walk_parameters(2).step.swing_height
-    assert walk_parameters(1, path, inside_skill=True) == walk_parameters(1, inside_skill=True)
-
-
 def _steady_steps(params: StepParameters, command: StepCommand, steps: int = 6) -> list:
     generator = StepGenerator(params)
     return [generator.next_targets(command) for _ in range(8 * steps)]
