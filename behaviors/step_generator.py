@@ -77,6 +77,26 @@ class StepParameters:
     #: torso must lean further into the walk than standing allows. Blended over each step.
     speed_lean: float = 0.0
     speed_foot_forward: float = 0.0
+    #: heel strike at speed (0, the default, is off): the swing foot pitches toe-up from
+    #: ``heel_strike_from`` of the step on and lands up to ``speed_heel_strike`` (rad) toe-up
+    #: at a full forward step (in proportion below it), then rolls flat over its first
+    #: ``heel_strike_cycles`` cycles of stance, pitched about a point ``heel_pivot`` (m)
+    #: behind the sole point. That point lies further back than the heel (0.05 m): in effect
+    #: the landing sole point is also planned ``heel_pivot * sin(pitch)`` higher (0.012 m at
+    #: 0.12 rad), so the swing knee need not stretch as far by the landing. Why (session 11,
+    #: scripts/walk_speed_probe.py): at full speed the swing knee and ankle pitch sit at their
+    #: speed cap for 75-87 % of the swing and land 26-39 deg short of the flat-foot plan (knee
+    #: bent, toe up), the foot lands a cycle late and 0.03 m short, and the stance foot does
+    #: not slip: the missing speed is the landing. Pivot 0.03 / 0.05 / 0.08 / 0.1 / 0.15 m
+    #: and toe-ups 0.1-0.3 rad were screened; 0.1 m and the toe rising from 0.6 of the step
+    #: walked fastest without falls
+    speed_heel_strike: float = 0.0
+    heel_strike_from: float = 0.6
+    heel_strike_cycles: int = 2
+    heel_pivot: float = 0.1
+    #: sole shift forward (m) at a full forward step while the heel strike is on (a type
+    #: whose soles sit far back: type 4 rolled over sideways within 2 s at full speed)
+    heel_strike_foot_forward: float = 0.0
 
     def __post_init__(self) -> None:
         if self.step_cycles < 2:
@@ -89,6 +109,14 @@ class StepParameters:
             raise ValueError(f"swing_profile must be one of {SWING_PROFILES}")
         if not 0.0 < self.swing_ramp <= 0.5:
             raise ValueError(f"swing_ramp must be in (0, 0.5], got {self.swing_ramp}")
+        if not 1 <= self.heel_strike_cycles < self.step_cycles:
+            raise ValueError(
+                f"heel_strike_cycles must be in [1, step_cycles), got {self.heel_strike_cycles}"
+            )
+        if not 0.0 <= self.heel_strike_from < 1.0:
+            raise ValueError(f"heel_strike_from must be in [0, 1), got {self.heel_strike_from}")
+        if self.speed_heel_strike < 0.0 or self.heel_pivot < 0.0:
+            raise ValueError("speed_heel_strike and heel_pivot must not be negative")
 
 
 @dataclass(frozen=True, slots=True)
@@ -142,6 +170,9 @@ class FootTargets:
     left_active: bool
     #: the torso's forward lean over the soles (rad): the soles are pitched by ``-lean``
     lean: float = 0.0
+    #: each sole's own toe-up pitch (rad) on top (``speed_heel_strike``)
+    left_pitch: float = 0.0
+    right_pitch: float = 0.0
 
 
 def _smooth(s: float) -> float:
@@ -194,6 +225,11 @@ class StepGenerator:
         # and where in between this cycle is: speed_lean and speed_foot_forward scale with it
         self._speed_share = (0.0, 0.0)
         self._speed_now = 0.0
+        # heel strike (speed_heel_strike): toe-up pitch of each foot now, and the support
+        # foot's when it landed
+        self._support_pitch = 0.0
+        self._swing_pitch = 0.0
+        self._landed_pitch = 0.0
 
     # ------------------------------------------------------------------ the phase
     @property
@@ -257,9 +293,20 @@ class StepGenerator:
         start, end = self._speed_share
         self._speed_now = start + (end - start) * s
         lift = p.swing_height * math.sin(math.pi * s)
+        if p.speed_heel_strike > 0.0 or self._landed_pitch != 0.0 or self._swing_pitch != 0.0:
+            self._update_heel_strike(s)
         # sway: the torso moves towards the support side, i.e. the soles move away from it
         sway = p.sway * math.sin(math.pi * s) * (1.0 if self._left_active else -1.0)
         return self._targets(lift, sway)
+
+    def _update_heel_strike(self, s: float) -> None:
+        """The swing foot's toe rising towards its landing and the support foot rolling flat
+        (speed_heel_strike)."""
+        p = self.params
+        rise = min(1.0, max(0.0, (s - p.heel_strike_from) / (1.0 - p.heel_strike_from)))
+        self._swing_pitch = p.speed_heel_strike * self._speed_share[1] * _smooth(rise)
+        left = max(0.0, 1.0 - (self._t + 1) / p.heel_strike_cycles)
+        self._support_pitch = self._landed_pitch * left
 
     def _start_step(self, command: StepCommand) -> None:
         p = self.params
@@ -272,6 +319,8 @@ class StepGenerator:
         self._speed_share = (self._speed_now, min(1.0, full))
         swing = self._left if self._left_active else self._right
         self._lift_off = swing
+        self._landed_pitch = self._swing_pitch  # the old swing foot supports now
+        self._swing_pitch = 0.0
         # landing pose in the walk frame at the END of this step. Forward: half the step ahead
         # (the support foot ends half a step behind). Sideways and turning, the feet must not
         # close in on each other (the soles are 0.08 m wide, 0.03 m apart at the neutral
@@ -304,17 +353,41 @@ class StepGenerator:
     def _support(self) -> FootPose:
         return self._right if self._left_active else self._left
 
-    def _targets(self, lift: float, sway: float, speed_share: float | None = None) -> FootTargets:
+    def _targets(
+        self,
+        lift: float,
+        sway: float,
+        speed_share: float | None = None,
+        pitched: bool = True,
+    ) -> FootTargets:
         p = self.params
         share = self._speed_now if speed_share is None else speed_share
         lean = p.lean + p.speed_lean * share
         forward = p.foot_forward + p.speed_foot_forward * share
+        if p.speed_heel_strike > 0.0:
+            forward += p.heel_strike_foot_forward * share
         left_z = -p.torso_height + (lift if self._left_active else 0.0)
         right_z = -p.torso_height + (0.0 if self._left_active else lift)
-        left = _tilted(self._left.x + forward, self._left.y + sway, left_z, lean)
-        right = _tilted(self._right.x + forward, self._right.y + sway, right_z, lean)
+        swing_pitch, support_pitch = (
+            (self._swing_pitch, self._support_pitch) if pitched else (0.0, 0.0)
+        )
+        left_pitch, right_pitch = (
+            (swing_pitch, support_pitch) if self._left_active else (support_pitch, swing_pitch)
+        )
+        lx, lz = _heel_pivoted(p, left_pitch)
+        rx, rz = _heel_pivoted(p, right_pitch)
+        left = _tilted(self._left.x + forward + lx, self._left.y + sway, left_z + lz, lean)
+        right = _tilted(self._right.x + forward + rx, self._right.y + sway, right_z + rz, lean)
         return FootTargets(
-            left, right, self._left.yaw, self._right.yaw, self._t, self._left_active, lean
+            left,
+            right,
+            self._left.yaw,
+            self._right.yaw,
+            self._t,
+            self._left_active,
+            lean,
+            left_pitch,
+            right_pitch,
         )
 
     def stand_targets(self) -> FootTargets:
@@ -323,9 +396,18 @@ class StepGenerator:
         p = self.params
         self._left = FootPose(0.0, p.foot_spread)
         self._right = FootPose(0.0, -p.foot_spread)
-        targets = self._targets(0.0, 0.0, speed_share=0.0)
+        targets = self._targets(0.0, 0.0, speed_share=0.0, pitched=False)
         self._left, self._right = saved
         return replace(targets, t=self._t, left_active=self._left_active)
+
+
+def _heel_pivoted(params: StepParameters, pitch: float) -> tuple[float, float]:
+    """(forward, up) shift of the sole point of a foot pitched toe-up by ``pitch`` about a
+    point ``heel_pivot`` behind it (the heel stays put)."""
+    if pitch == 0.0:
+        return 0.0, 0.0
+    d = params.heel_pivot
+    return -d * (1.0 - math.cos(pitch)), d * math.sin(pitch)
 
 
 def _tilted(x: float, y: float, z: float, lean: float) -> tuple[float, float, float]:

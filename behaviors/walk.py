@@ -143,6 +143,12 @@ class WalkParameters:
     #: torso rolling to one side over 1-2 s (-10 -> -25 deg) while the feet kept their stance
     #: width, then rolling over. 0 (the default) is off.
     go_to_landing_roll_lean_gain: float = 0.0
+    #: whether ``walk`` to a target lands with the step's heel strike
+    #: (``StepParameters.speed_heel_strike``) as ``walk_velocity`` does. Why off in
+    #: walk.yaml (session 11): in random target walks (at most 0.65 m/s) it added falls
+    #: (scripts/walk_seed_sets.py, two groups of 12 sets: types 0 and 1 0 -> 1 each on one,
+    #: types 2 and 3 0 -> 1 and 0 -> 4 on the other)
+    go_to_heel_strike: bool = True
     #: walking to a target: within this distance (m) of it the command has the
     #: ``odometry_drift`` taken off (feed-forward: the robot then really moves at the velocity
     #: it wants). Why (session 9): at the 0.2 m/s approach floor the drift (-0.1 m/s forward
@@ -426,8 +432,9 @@ class WalkEngine:
 
     def _leg_angles(self, targets: FootTargets, context: SkillContext) -> dict[str, float]:
         pitch = -targets.lean  # soles flat on the ground under a leaning torso
-        left = self.ik.solve_sole("left", targets.left, 0.0, pitch, targets.left_yaw)
-        right = self.ik.solve_sole("right", targets.right, 0.0, pitch, targets.right_yaw)
+        left_pitch, right_pitch = pitch - targets.left_pitch, pitch - targets.right_pitch
+        left = self.ik.solve_sole("left", targets.left, 0.0, left_pitch, targets.left_yaw)
+        right = self.ik.solve_sole("right", targets.right, 0.0, right_pitch, targets.right_yaw)
         angles = {**left.angles_deg, **right.angles_deg}
         self._imu_corrections(angles, targets, context)
         return angles
@@ -650,9 +657,14 @@ class WalkSkill(WalkSkillBase):
 
     def engine_parameters(self, params: WalkParameters) -> WalkParameters:
         """Walking to a target, the heading hold measures against
-        ``go_to_heading_hold_reference``: the go-to's own heading loop keeps the heading."""
+        ``go_to_heading_hold_reference`` (the go-to's own heading loop keeps the heading), and
+        without ``go_to_heel_strike`` the feet land flat."""
+        step = params.step
+        if not params.go_to_heel_strike:
+            step = replace(step, speed_heel_strike=0.0)
         return replace(
             params,
+            step=step,
             heading_hold_reference=params.go_to_heading_hold_reference,
             landing_roll_lean_gain=params.go_to_landing_roll_lean_gain,
         )

@@ -37,6 +37,8 @@ import argparse
 import math
 import sys
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -79,6 +81,17 @@ class WalkDriver(LocalAgent):
             if self.is_standing():
                 return True
         return False
+
+
+@contextmanager
+def walk_file_with(overrides: list[str]) -> Iterator[Path]:
+    """``walk.yaml`` itself, or a temporary copy with ``overrides`` (``dotted.key=value``, the
+    scripts' ``--set``) applied, for as long as the ``with`` block runs."""
+    if not overrides:
+        yield WALK_FILE
+        return
+    with tempfile.TemporaryDirectory() as folder:
+        yield with_settings(overrides, Path(folder), WALK_FILE)
 
 
 def new_driver(
@@ -203,8 +216,7 @@ def main() -> None:
         help="walk figures with a walk.yaml setting changed (a copy; e.g. default.acceleration=1)",
     )
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as folder:
-        walk_file = with_settings(args.set, Path(folder), WALK_FILE) if args.set else WALK_FILE
+    with walk_file_with(args.set) as walk_file:
         _print_figures(args, walk_file)
 
 

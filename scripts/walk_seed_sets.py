@@ -3,7 +3,8 @@
 ``benchmarks/locomotion.py --skip-velocity --skip-dribble --skip-kick --random-seeds 3 --seed S``
 run once per ``S``, with the figures summed: falls per type (and which run seeds fell, for
 ``scripts/walk_trace.py``), the mean of the per-type mean stop errors, the largest stop error
-and how many per-type largest stop errors were above 0.1 m. Why: falls are rare, one seed set
+and how many per-type largest stop errors were above 0.1 m; per type, falls, the mean of all
+its stops, its largest and the targets reached. Why: falls are rare, one seed set
 says little, and comparing walk settings needs the same 15 sets run the same way each time.
 
 Run: ``python scripts/walk_seed_sets.py --seeds 0 7 13 21 29 [--types 2] [--set key=value]``
@@ -13,16 +14,13 @@ from __future__ import annotations
 
 import argparse
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from behaviors.walk import WALK_FILE
-from benchmarks.dribble import with_settings
-from benchmarks.locomotion import random_targets
+from benchmarks.locomotion import random_targets, walk_file_with
 from world.nao_model import ROBOT_TYPES
 
 
@@ -31,6 +29,8 @@ def run_sets(
 ) -> None:
     """Print one line per seed set and type, then the totals."""
     falls_by_type = dict.fromkeys(types, 0)
+    errors_by_type: dict[int, list[float]] = {t: [] for t in types}
+    largest_by_type = dict.fromkeys(types, float("nan"))
     type_means: list[float] = []
     largest: list[float] = []
     reached_total = 0
@@ -46,6 +46,8 @@ def run_sets(
                 if run_falls:
                     fell_runs.append(f"type{robot_type}/seed{seed}x{run_falls}")
             falls_by_type[robot_type] += falls
+            errors_by_type[robot_type].extend(errors)
+            largest_by_type[robot_type] = np.nanmax([largest_by_type[robot_type], *errors])
             mean = float(np.mean(errors)) if errors else float("nan")
             top = max(errors, default=float("nan"))
             type_means.append(mean)
@@ -57,6 +59,12 @@ def run_sets(
                 flush=True,
             )
     print(f"falls per type: {falls_by_type} total {sum(falls_by_type.values())}")
+    for robot_type, errors in errors_by_type.items():
+        mean = float(np.mean(errors)) if errors else float("nan")
+        print(
+            f"type{robot_type}: falls {falls_by_type[robot_type]} stop mean {mean:.3f} "
+            f"largest {largest_by_type[robot_type]:.3f} reached {len(errors)}"
+        )
     print(f"fell runs: {' '.join(fell_runs) or '-'}")
     print(
         f"mean of per-type mean stop errors {np.nanmean(type_means):.3f} m, largest "
@@ -73,8 +81,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=60.0)
     parser.add_argument("--set", action="append", default=[], metavar="DOTTED.KEY=VALUE")
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as folder:
-        walk_file = with_settings(args.set, Path(folder), WALK_FILE) if args.set else WALK_FILE
+    with walk_file_with(args.set) as walk_file:
         run_sets(args.seeds, args.types, args.random_seeds, args.seconds, walk_file)
 
 

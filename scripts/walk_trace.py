@@ -18,7 +18,6 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-import tempfile
 from collections import deque
 from pathlib import Path
 
@@ -26,9 +25,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from behaviors.walk import WALK_FILE
-from benchmarks.dribble import with_settings
-from benchmarks.locomotion import _random_target, new_driver
+from benchmarks.locomotion import _random_target, new_driver, walk_file_with
 
 
 def _record(driver, target, cycle: int) -> dict:
@@ -147,8 +144,7 @@ def main() -> None:
     parser.add_argument("--every", type=int, default=2, help="print every n-th cycle of a fall")
     parser.add_argument("--set", action="append", default=[], metavar="DOTTED.KEY=VALUE")
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as folder:
-        walk_file = with_settings(args.set, Path(folder), WALK_FILE) if args.set else WALK_FILE
+    with walk_file_with(args.set) as walk_file:
         trace(args.type, args.seed, args.seconds, walk_file, args.every)
 
 

@@ -168,6 +168,8 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
     assert inside.go_to_pitch_back_deg == math.inf
     assert inside.go_to_drift_feedforward_m == 0.0
     assert inside.go_to_landing_roll_lean_gain == 0.0
+    # session 11's heel strike stays out of the kicks
+    assert inside.step.speed_heel_strike == 0.0 < own.step.speed_heel_strike
     own_only = {
         "odometry_drift": own.odometry_drift,
         "go_to_drift_lookahead_s": own.go_to_drift_lookahead_s,
@@ -175,8 +177,110 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
         "go_to_pitch_back_deg": own.go_to_pitch_back_deg,
         "go_to_drift_feedforward_m": own.go_to_drift_feedforward_m,
         "go_to_landing_roll_lean_gain": own.go_to_landing_roll_lean_gain,
+        "step": replace(inside.step, speed_heel_strike=own.step.speed_heel_strike),
     }
     assert replace(inside, **own_only) == own  # nothing else differs
+
+
+def _steady_steps(params: StepParameters, command: StepCommand, steps: int = 6) -> list:
+    generator = StepGenerator(params)
+    return [generator.next_targets(command) for _ in range(8 * steps)]
+
+
+def test_heel_strike_lands_the_swing_foot_toe_up_and_rolls_it_flat():
+    """Session 11: at full speed the swing foot lands toe-up (its toe rising from
+    ``heel_strike_from`` of the step) and rolls flat over ``heel_strike_cycles`` cycles of
+    stance, pitched about a point ``heel_pivot`` behind the sole point (which rises by
+    ``heel_pivot * sin(pitch)``); off, the targets are the flat-foot walk's, bit for bit."""
+    flat = StepParameters(max_forward=0.14, swing_height=0.04)
+    heel = replace(flat, speed_heel_strike=0.12, heel_strike_from=0.6, heel_pivot=0.1)
+    full = StepCommand(0.14)
+    plain, pitched = _steady_steps(flat, full)[-8:], _steady_steps(heel, full)[-8:]
+    for a, b in zip(plain, pitched, strict=True):
+        assert (a.left_pitch, a.right_pitch) == (0.0, 0.0)
+        swing, support = (
+            (b.left_pitch, b.right_pitch) if b.left_active else (b.right_pitch, b.left_pitch)
+        )
+        s = (b.t + 1) / 8
+        assert (swing == 0.0) == (s <= 0.6)  # the toe rises late in the swing ...
+        assert support == pytest.approx(0.06 if b.t == 0 else 0.0)  # ... and rolls flat
+        flat_swing = a.left if a.left_active else a.right
+        heel_swing = b.left if b.left_active else b.right
+        if b.t == 7:  # landed toe-up, the sole point 0.1 sin(0.12) m higher
+            assert swing == pytest.approx(0.12)
+            lift = 0.1 * math.sin(0.12)
+            assert heel_swing[2] - flat_swing[2] == pytest.approx(lift, abs=0.002)
+    assert _steady_steps(replace(flat, speed_heel_strike=0.0), full) == _steady_steps(flat, full)
+
+
+@pytest.mark.parametrize(
+    "command", (StepCommand(0.0, 0.05), StepCommand(-0.05), StepCommand(0.0, 0.0, 0.2))
+)
+def test_heel_strike_stays_out_of_sideways_backward_and_turning_steps(command):
+    params = StepParameters(max_forward=0.14, speed_heel_strike=0.12)
+    for targets in _steady_steps(params, command):
+        assert (targets.left_pitch, targets.right_pitch) == (0.0, 0.0)
+    generator = StepGenerator(params)
+    for _ in range(23):
+        generator.next_targets(StepCommand(0.14))
+    stand = generator.stand_targets()
+    assert (stand.left_pitch, stand.right_pitch) == (0.0, 0.0)
+
+
+def test_the_engine_turns_a_toe_up_pitch_into_a_toe_up_foot():
+    """The IK gets the sole pitched toe-up (forward kinematics: the foot's forward axis points
+    upwards relative to the torso by the lean plus the heel strike's pitch)."""
+    from world.kinematics import body_transforms
+    from world.nao_model import robot_spec
+
+    engine = WalkEngine(0, walk_parameters(0))
+    generator = StepGenerator(replace(engine.params.step, lean=0.0, speed_lean=0.0))
+    targets = replace(generator.stand_targets(), left_pitch=0.2)
+    context = SimpleNamespace(
+        world=SimpleNamespace(
+            robot=SimpleNamespace(pitch_deg=0.0, roll_deg=0.0, gyro_deg_s=(0.0, 0.0, 0.0))
+        )
+    )
+    angles = engine._leg_angles(targets, context)
+    feet = body_transforms(robot_spec(0), angles)
+    up = {side: float(feet[f"{side}foot"][2][1]) for side in ("l", "r")}  # forward axis, z
+    assert up["l"] == pytest.approx(math.sin(0.2), abs=0.01)
+    assert up["r"] == pytest.approx(0.0, abs=0.01)
+
+
+@pytest.mark.parametrize("robot_type", ROBOT_TYPES)
+def test_walking_to_a_target_lands_flat_and_walk_velocity_with_the_heel_strike(robot_type):
+    """Session 11: the heel strike made random-target walks fall (walk.yaml), so ``walk`` to a
+    target keeps the flat-foot landing (``go_to_heel_strike: false``) and only
+    ``walk_velocity`` lands toe-up; with the heel strike off, type 4's sole shift goes too."""
+    params = walk_parameters(robot_type)
+    assert params.step.speed_heel_strike > 0.0 and not params.go_to_heel_strike
+    walking = WalkSkill().engine_parameters(params)
+    assert walking.step == replace(params.step, speed_heel_strike=0.0)
+    assert WalkVelocitySkill().engine_parameters(params).step == params.step
+    full = StepCommand(params.step.max_forward)
+    flat = replace(params.step, speed_heel_strike=0.0, heel_strike_foot_forward=0.0)
+    assert _steady_steps(walking.step, full) == _steady_steps(flat, full)
+
+
+def test_the_heel_strike_foot_forward_shifts_the_soles_only_with_the_heel_strike():
+    params = StepParameters(max_forward=0.14, speed_heel_strike=0.12, heel_strike_foot_forward=0.01)
+    shifted = _steady_steps(params, StepCommand(0.14))[-1]
+    plain = _steady_steps(replace(params, heel_strike_foot_forward=0.0), StepCommand(0.14))[-1]
+    assert shifted.left[0] - plain.left[0] == pytest.approx(0.01 * math.cos(params.lean))
+    off = replace(params, speed_heel_strike=0.0)
+    assert _steady_steps(off, StepCommand(0.14)) == _steady_steps(
+        replace(off, heel_strike_foot_forward=0.0), StepCommand(0.14)
+    )
+
+
+def test_the_heel_strike_settings_are_checked():
+    with pytest.raises(ValueError):
+        StepParameters(speed_heel_strike=-0.1)
+    with pytest.raises(ValueError):
+        StepParameters(heel_strike_cycles=8)
+    with pytest.raises(ValueError):
+        StepParameters(heel_strike_from=1.0)
 
 
 def test_a_pitched_back_torso_holds_the_restart_to_a_backward_step():
@@ -384,6 +488,16 @@ def test_walk_forward_reaches_0_7_mps_on_every_type(robot_type):
     assert not fell
     assert forward >= 0.7
     assert abs(left) < 0.2 * forward  # walking straight on, not drifting off sideways
+
+
+def test_the_heel_strike_walks_faster_type0(tmp_path):
+    """Session 11: type 0 at full speed, benchmarks/locomotion.py's figure: 0.796 m/s with the
+    heel strike, 0.730 without."""
+    path = with_settings(["type0.step.speed_heel_strike=0.0"], tmp_path, WALK_FILE)
+    flat, _, _, fell_flat = measure_velocity(0, (1.0, 0.0, 0.0), 3.0, walk_file=path)
+    heel, _, _, fell = measure_velocity(0, (1.0, 0.0, 0.0), 3.0)
+    assert not fell and not fell_flat
+    assert heel > flat + 0.03
 
 
 @pytest.mark.parametrize("robot_type", (0, 1))
