@@ -469,6 +469,17 @@ def test_a_shuffle_start_moves_the_standing_robot_by_the_asked_amount():
         session.close()
 
 
+def test_a_basic_trial_lets_a_started_kick_end_after_the_time_limit():
+    """The 20 s limit stops the approach, never a kick mid-motion: cut off on one leg, the
+    robot fell, and the benchmark counted it as the kick's fall (session 11: 2 of 40 trials)."""
+    goes_on = kick_benchmark._basic_trial_goes_on
+    limit = kick_benchmark.BASIC_KICK_TIMEOUT_CYCLES
+    assert goes_on(limit - 1, "approach") and goes_on(limit - 1, "kick")
+    assert not goes_on(limit, "approach") and not goes_on(limit, "head_up")
+    assert goes_on(limit, "kick") and goes_on(limit + 100, "kick")
+    assert not goes_on(limit + kick_benchmark.BASIC_KICK_FINISH_CYCLES, "kick")
+
+
 def test_weak_kick_keeps_the_robot_up():
     result = run_trial("left", 0.0, seed=2)
     assert not result.fell
