@@ -177,7 +177,8 @@ def test_the_long_left_kick_raises_the_support_arm_only_until_the_ball_has_gone(
     the short left kick keeps its arms. Why (session 11, asked for 3 m, left-footed kicks,
     ``scripts/kick/one_foot.py``): with the arm up to the end the left kicks went 0.3-0.6 m
     further but fell over the support foot after landing (falls 3 / 6 / 4 -> 2 / 8 / 6 on layout
-    seeds 0-2 / 3-4 / 5-6); lowered after the swing: 1 / 5 / 4, 3.19 / 3.10 / 3.44 m median."""
+    seeds 0-2 / 3-4 / 5-6); lowered after the swing: 1 / 5 / 4, 3.19 / 3.10 / 3.44 m median;
+    with the contact ankle at 17.5 (20.5) 3.39 m median on seeds 0-4, 3.33 on seeds 5-8."""
     stand = get_pose("stand").joints
     long = kick_motion(0, None, "left", aligned=True, long=True)
     short = kick_motion(0, None, "left", aligned=True)
@@ -188,10 +189,15 @@ def test_the_long_left_kick_raises_the_support_arm_only_until_the_ball_has_gone(
     assert all("raj2" not in frames[i].joints for i in range(1, swing_end + 1))  # held up
     assert frames[recover].joints["raj2"] == stand["raj2"]
     assert short.frames.frames[0].joints["raj2"] == stand["raj2"]
-    # the same legs as the short left kick, so the alignment and the swing are the same
-    for mine, theirs in zip(long.frames.frames, short.frames.frames, strict=True):
+    # the legs of the short left kick but for the contact frame's kicking ankle, a little lower
+    # (toe down: the ball leaves higher and faster); the same ball spot, so the same alignment
+    contact = min(long.swing_frames)
+    for i, (mine, theirs) in enumerate(zip(long.frames.frames, short.frames.frames, strict=True)):
         legs = {j: v for j, v in mine.joints.items() if "lj" in j}
-        assert legs == {j: v for j, v in theirs.joints.items() if "lj" in j}
+        short_legs = {j: v for j, v in theirs.joints.items() if "lj" in j}
+        if i == contact:
+            assert 0.0 < short_legs.pop("llj5") - legs.pop("llj5") <= 5.0
+        assert legs == short_legs
     assert expected_ball_ego(0, "left", long) == expected_ball_ego(0, "left", short)
 
 
@@ -517,7 +523,8 @@ def test_basic_kick_moves_the_ball_three_metres(basic_kicks):
     least two of the three kicked (which layout falls is chaotic across CPUs, see above).
 
     Session 10: 3.18 / 3.16 / 2.89 m (the third a left kick, short); session 11, with the long
-    left kick raising its support arm through the swing: 3.42 / 3.16 / 3.33 m."""
+    left kick raising its support arm through the swing: 3.42 / 3.16 / 3.33 m; with its
+    contact frame's ankle at 17.5 deg: 3.56 (falling after the contact) / 3.16 / 3.42 m."""
     kicked = [r for r in basic_kicks if r.time_to_kick_s is not None]
     assert len(kicked) >= 2, basic_kicks
     assert min(result.distance_m for result in kicked) >= 3.0, basic_kicks
