@@ -24,7 +24,8 @@ Phases:
    torso has stopped swaying (:class:`CalmWatch`, at most ``CALM_MAX_CYCLES`` in all).
 5. ``kick``: the ``kick`` skill with the strength that the kick's calibration table gives for
    the distance; beyond the table's reach, and for ``"long"``, the kick's long version where
-   the file has one (:func:`wants_long`; the right foot's, which goes further at full strength).
+   the file has one (:func:`wants_long`; each foot's long kick raises its support arm and goes
+   further at full strength).
 
 Once the kick has started it plays to its end. The head
 looks down while approaching: a ball at the toes lies about 65 deg below the horizon, outside a

@@ -247,9 +247,10 @@ def kick_motion(
     over it, while a smaller weight shift that suits it falls after contact from a stand.
     After the alignment the left kick's support hip extends further (about 0.3 m more, no more
     falls in basic kicks); on the right foot the same change fell more.
-    ``long`` prefers the name with :data:`LONG_SUFFIX` (``kick_right_aligned_long``): the right
-    kick with its support side's arm raised goes further and falls less at full strength, but
-    its weaker swings miss their distances by more (session 10), so it serves long requests."""
+    ``long`` prefers the name with :data:`LONG_SUFFIX` (``kick_right_aligned_long``,
+    ``kick_left_aligned_long``): the kicks with their support side's arm raised go further and
+    fall less at full strength, but their weaker swings miss their distances by more or fall
+    (sessions 10 and 11), so they serve long requests."""
     kicks = default_kicks() if kicks is None else kicks
     names: tuple[str, ...] = (KICK_RIGHT, KICK_LEFT) if foot == "right" else (KICK_LEFT,)
     if aligned:

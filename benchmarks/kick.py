@@ -14,8 +14,9 @@ fell at any time, and the time from the first kick cycle to the first cycle the 
 
 Basic kicks: the same standing robot, the ball 0.5-2 m away at a random bearing, a target
 ``distance`` m from the ball within 45 deg of the line robot -> ball;
-``execute("basic_kick", x, y, distance)`` runs until it finishes (or 20 s). Measured: ball
-travel from where it lay when the kick hit it, direction error against the target, falls, and
+``execute("basic_kick", x, y, distance)`` runs until it finishes (or 20 s; a kick
+motion started by then plays to its end). Measured: ball travel from where it lay when the
+kick hit it, direction error against the target, falls, and
 the time from the first ``basic_kick`` cycle to the kick motion setting the ball moving (walking
 included; a bump while walking does not count, as it did up to the third round).
 
@@ -445,8 +446,13 @@ class BasicKickTrace:
         return "; ".join(parts)
 
 
-#: Give a basic-kick trial this many cycles to reach the ball and kick (20 s).
+#: Give a basic-kick trial this many cycles to reach the ball and start the kick (20 s).
 BASIC_KICK_TIMEOUT_CYCLES = 1000
+#: A kick motion that started within the time limit plays to its end, for at most this many
+#: cycles more (the longest kick lasts about 3.1 s). Why: up to session 10 the limit cut kicks
+#: off mid-motion (about 1 trial in 20) and the robot, put back into the stand on one leg, fell
+#: over: a fall of the benchmark's making, counted as the kick's.
+BASIC_KICK_FINISH_CYCLES = 250
 
 
 def random_basic_layout(rng: np.random.Generator) -> tuple[float, float, float]:
@@ -456,6 +462,14 @@ def random_basic_layout(rng: np.random.Generator) -> tuple[float, float, float]:
     distance = rng.uniform(0.5, 2.0)
     bearing = rng.uniform(-180.0, 180.0)
     return distance, bearing, bearing + START[2] + rng.uniform(-45.0, 45.0)
+
+
+def _basic_trial_goes_on(cycles: int, phase: str) -> bool:
+    """Whether a basic-kick trial runs another cycle: within the time limit, or beyond it while
+    the kick motion that started within it plays out (:data:`BASIC_KICK_FINISH_CYCLES`)."""
+    if cycles < BASIC_KICK_TIMEOUT_CYCLES:
+        return True
+    return phase == "kick" and cycles < BASIC_KICK_TIMEOUT_CYCLES + BASIC_KICK_FINISH_CYCLES
 
 
 def run_basic_trial(
@@ -490,7 +504,7 @@ def run_basic_trial(
         skill = driver.behavior.skill("basic_kick")
         placement = None
         stage = None
-        while not finished and cycles < BASIC_KICK_TIMEOUT_CYCLES:
+        while not finished and _basic_trial_goes_on(cycles, skill.phase):
             before = session.ball.position()
             if placement is None and skill.phase == "kick" and skill.foot is not None:
                 motion = kick_motion(robot_type, settings.motions, skill.foot, aligned=True)
