@@ -645,3 +645,33 @@ def test_the_search_scores_each_contact_rule_on_its_own_bank():
             banks.trial(2, sequences)
     finally:
         banks.close()
+
+
+def test_a_retry_version_plays_only_after_an_attempt_that_never_rose():
+    """``get_up_back_retry_type3`` replaces type 3's back get-up once an attempt has failed
+    without the torso coming within RETRY_NEVER_UP_TILT_DEG of vertical; types without a
+    retry version play their own sequence again."""
+    skill = GetUpSkill()
+    assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
+    skill.get_up_attempts = 1
+    assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
+    skill.last_never_up = True
+    assert skill._get_up_sequence("back", 3).name == "get_up_back_retry_type3"
+    assert skill._get_up_sequence("back", 0).name == "get_up_back_type0"
+    assert skill._get_up_sequence("front", 3).name == "get_up_front_type3"
+    skill.reset()
+    assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
+
+
+def test_type3_back_retry_stands_without_self_collision(monkeypatch):
+    """Benchmark fall type 3 seed 3001 (``--seed 0``, ends on the back) without self-collision
+    (``benchmarks/physics.py --variant noself``): the first sit-up rolls back over the
+    shoulders, the retry version rocks up from there and the robot stands within 4 s; playing
+    type 3's back get-up again it stays down. With self-collision the first attempt stands."""
+    from benchmarks.physics import VARIANTS
+
+    assert run_trial(3, "back", 3001).succeeded
+    with VARIANTS["noself"]():
+        assert run_trial(3, "back", 3001).succeeded
+        _package_without(monkeypatch, "get_up_back_retry_type3")
+        assert not run_trial(3, "back", 3001).succeeded
