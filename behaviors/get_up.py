@@ -91,12 +91,16 @@ ROLL_FROM_LEFT = "roll_left_to_back"
 #: sit-up that failed is followed by one that works under the other.
 RETRY_SUFFIX = "_retry"
 #: ... but only after a back get-up whose torso never came within this many degrees of
-#: vertical (None: after any failed attempt): a sit-up that never rose is what the other
-#: rule's failure looks like, while a robot that sat up and then tipped back (or a front
-#: get-up that failed) does better with the same sequence again. Type 3 back falls (screen,
-#: seeds 0 / 500, with / without self-collision): after any failure 21 / 18 of 31 / 32, 45
-#: deg 22 / 18, 75 deg 26 / 18 (base 26 / 0; sit-up lj3 100 in these, 85 in the packaged).
-RETRY_NEVER_UP_TILT_DEG: float | None = 75.0
+#: vertical, by robot type (RETRY_NEVER_UP_DEFAULT_DEG for the others; None: after any failed
+#: attempt): a sit-up that never rose is what the other rule's failure looks like, while a
+#: robot that sat up and then tipped back (or a front get-up that failed) does better with the
+#: same sequence again. Type 3 back falls (screen, seeds 0 / 500, with / without
+#: self-collision): after any failure 21 / 18 of 31 / 32, 45 deg 22 / 18, 75 deg 26 / 18 (base
+#: 26 / 0; sit-up lj3 100 in these, 85 in the packaged); types 0 and 3, all falls, seeds 0 /
+#: 500 / 1000 / 2000: 30 deg for both 126 / 111 of 160 (type 3 loses its first attempts'
+#: retries), type 0's retry at 30 deg 126 / 124 (no trial with self-collision changes).
+RETRY_NEVER_UP_DEFAULT_DEG: float | None = 75.0
+RETRY_NEVER_UP_TILT_DEG: Mapping[int, float | None] = MappingProxyType({0: 30.0})
 #: A back get-up has sat up by the end of its first SAT_UP_FRAMES frames: from then on a torso
 #: more than ABORT_TILT_DEG from vertical means it lies again. Once the legs are folded under
 #: it (FOLDED_FRAMES), leaning back more than ABORT_BACK_DEG means it is tipping back over.
@@ -435,7 +439,7 @@ class GetUpSkill(Skill):
         self.attempts = 0
         #: get-up attempts (not side rolls) started so far
         self.get_up_attempts = 0
-        #: the last failed get-up attempt's torso never came up (RETRY_NEVER_UP_TILT_DEG)
+        #: the last failed back get-up's torso never came up (RETRY_NEVER_UP_TILT_DEG)
         self.last_never_up = False
         #: the side the robot was found lying on when the current sequence started
         self.lying_on: str | None = None
@@ -541,7 +545,7 @@ class GetUpSkill(Skill):
         has failed and the type has one, else the type's own or the common one."""
         base = f"get_up_{side}"
         retry = f"{base}{RETRY_SUFFIX}"
-        never_up = RETRY_NEVER_UP_TILT_DEG is None or self.last_never_up
+        never_up = _never_up_tilt_deg(robot_type) is None or self.last_never_up
         if self.get_up_attempts > 0 and never_up and f"{retry}_type{robot_type}" in self.sequences:
             base = retry
         return sequence_for(base, robot_type, self.sequences)
@@ -552,10 +556,9 @@ class GetUpSkill(Skill):
         assert player is not None
         attempt.least_tilt_deg = min(attempt.least_tilt_deg, state.tilt_deg)
         if not attempt.rolling:
+            limit = _never_up_tilt_deg(state.robot_type)
             self.last_never_up = (
-                RETRY_NEVER_UP_TILT_DEG is not None
-                and self.lying_on == "back"
-                and attempt.least_tilt_deg > RETRY_NEVER_UP_TILT_DEG
+                limit is not None and self.lying_on == "back" and attempt.least_tilt_deg > limit
             )
         if self._fell_back(state):
             self._attempt = _Attempt()  # lying again: settle briefly and start over
@@ -658,6 +661,11 @@ class GetUpSkill(Skill):
     def _hold_still(self, context: SkillContext, state: RobotState) -> None:
         """While the body settles keep every joint where it is (no flailing)."""
         context.commands.set_targets(dict(state.joints_deg))
+
+
+def _never_up_tilt_deg(robot_type: int) -> float | None:
+    """The type's :data:`RETRY_NEVER_UP_TILT_DEG`."""
+    return RETRY_NEVER_UP_TILT_DEG.get(robot_type, RETRY_NEVER_UP_DEFAULT_DEG)
 
 
 def _legs_risen(player: KeyframePlayer, state: RobotState) -> bool:

@@ -657,7 +657,8 @@ def test_a_retry_version_plays_only_after_an_attempt_that_never_rose():
     assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
     skill.last_never_up = True
     assert skill._get_up_sequence("back", 3).name == "get_up_back_retry_type3"
-    assert skill._get_up_sequence("back", 0).name == "get_up_back_type0"
+    assert skill._get_up_sequence("back", 0).name == "get_up_back_retry_type0"
+    assert skill._get_up_sequence("back", 2).name == "get_up_back"
     assert skill._get_up_sequence("front", 3).name == "get_up_front_type3"
     skill.reset()
     assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
@@ -675,3 +676,10 @@ def test_type3_back_retry_stands_without_self_collision(monkeypatch):
         assert run_trial(3, "back", 3001).succeeded
         _package_without(monkeypatch, "get_up_back_retry_type3")
         assert not run_trial(3, "back", 3001).succeeded
+
+
+def test_the_never_up_limit_is_per_type():
+    """Type 0's sit-up without self-collision stalls 40-50 deg short of upright, type 3's rolls
+    back: each type's retry waits for its own failure."""
+    assert get_up_module._never_up_tilt_deg(0) < get_up_module._never_up_tilt_deg(3)
+    assert get_up_module._never_up_tilt_deg(3) == get_up_module.RETRY_NEVER_UP_DEFAULT_DEG
