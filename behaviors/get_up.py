@@ -98,9 +98,10 @@ RETRY_SUFFIX = "_retry"
 #: self-collision): after any failure 21 / 18 of 31 / 32, 45 deg 22 / 18, 75 deg 26 / 18 (base
 #: 26 / 0; sit-up lj3 100 in these, 85 in the packaged); types 0 and 3, all falls, seeds 0 /
 #: 500 / 1000 / 2000: 30 deg for both 126 / 111 of 160 (type 3 loses its first attempts'
-#: retries), type 0's retry at 30 deg 126 / 124 (no trial with self-collision changes).
+#: retries), type 0's retry at 30 deg 126 / 124 (no trial with self-collision changes); types
+#: 2 and 4 at 30 deg, seeds as before: type 2's retry 154 / 110 -> 154 / 122, type 4's 153 / 106.
 RETRY_NEVER_UP_DEFAULT_DEG: float | None = 75.0
-RETRY_NEVER_UP_TILT_DEG: Mapping[int, float | None] = MappingProxyType({0: 30.0})
+RETRY_NEVER_UP_TILT_DEG: Mapping[int, float | None] = MappingProxyType({0: 30.0, 2: 30.0})
 #: A back get-up has sat up by the end of its first SAT_UP_FRAMES frames: from then on a torso
 #: more than ABORT_TILT_DEG from vertical means it lies again. Once the legs are folded under
 #: it (FOLDED_FRAMES), leaning back more than ABORT_BACK_DEG means it is tipping back over.

@@ -658,7 +658,8 @@ def test_a_retry_version_plays_only_after_an_attempt_that_never_rose():
     skill.last_never_up = True
     assert skill._get_up_sequence("back", 3).name == "get_up_back_retry_type3"
     assert skill._get_up_sequence("back", 0).name == "get_up_back_retry_type0"
-    assert skill._get_up_sequence("back", 2).name == "get_up_back"
+    assert skill._get_up_sequence("back", 2).name == "get_up_back_retry_type2"
+    assert skill._get_up_sequence("back", 4).name == "get_up_back_type4"
     assert skill._get_up_sequence("front", 3).name == "get_up_front_type3"
     skill.reset()
     assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
