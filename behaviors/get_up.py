@@ -30,6 +30,9 @@ is packaged until a trained one beats the keyframes on the benchmark: the defaul
 
 Sequences are looked up per robot type first (``get_up_front_type3``), then by the common name
 (``get_up_front``), so a type whose longer legs need other angles overrides only what differs.
+After a back get-up whose torso never rose, a type's retry version plays where it has one
+(``get_up_back_retry_type3``, :data:`RETRY_SUFFIX`): some sit-ups work only where a robot's
+parts collide with each other (our server) or only where they do not (the real one).
 """
 
 from __future__ import annotations
@@ -81,6 +84,24 @@ RETRY_AT_ONCE_PITCH_DEG: float | None = 60.0
 RETRY_AT_ONCE_MAX_GYRO_DEG_S: float | None = None
 #: The sequence that turns a robot lying on its left side onto its back (mirrored for the right).
 ROLL_FROM_LEFT = "roll_left_to_back"
+#: After a failed get-up attempt the next one plays ``get_up_<side>`` + RETRY_SUFFIX where the
+#: robot type has one (``get_up_back_retry_type3``), else the same sequence again. Why: the
+#: agent cannot know whether the server collides a robot's parts with each other (ours does,
+#: the real rcssserver3d does not), and some sit-ups stand robots up under one rule only; a
+#: sit-up that failed is followed by one that works under the other.
+RETRY_SUFFIX = "_retry"
+#: ... but only after a back get-up whose torso never came within this many degrees of
+#: vertical, by robot type (RETRY_NEVER_UP_DEFAULT_DEG for the others; None: after any failed
+#: attempt): a sit-up that never rose is what the other rule's failure looks like, while a
+#: robot that sat up and then tipped back (or a front get-up that failed) does better with the
+#: same sequence again. Type 3 back falls (screen, seeds 0 / 500, with / without
+#: self-collision): after any failure 21 / 18 of 31 / 32, 45 deg 22 / 18, 75 deg 26 / 18 (base
+#: 26 / 0; sit-up lj3 100 in these, 85 in the packaged); types 0 and 3, all falls, seeds 0 /
+#: 500 / 1000 / 2000: 30 deg for both 126 / 111 of 160 (type 3 loses its first attempts'
+#: retries), type 0's retry at 30 deg 126 / 124 (no trial with self-collision changes); types
+#: 2 and 4 at 30 deg, seeds as before: type 2's retry 154 / 110 -> 154 / 122, type 4's 153 / 106.
+RETRY_NEVER_UP_DEFAULT_DEG: float | None = 75.0
+RETRY_NEVER_UP_TILT_DEG: Mapping[int, float | None] = MappingProxyType({0: 30.0, 2: 30.0})
 #: A back get-up has sat up by the end of its first SAT_UP_FRAMES frames: from then on a torso
 #: more than ABORT_TILT_DEG from vertical means it lies again. Once the legs are folded under
 #: it (FOLDED_FRAMES), leaning back more than ABORT_BACK_DEG means it is tipping back over.
@@ -387,6 +408,8 @@ class _Attempt:
     last_pitch_deg: float | None = None
     #: the torso pitch of the last cycle (deg), for the pitch rate of the abort checks
     abort_pitch_deg: float | None = None
+    #: the least torso tilt (deg) seen since the sequence started
+    least_tilt_deg: float = 180.0
     settled_cycles: int = 0
     waited_cycles: int = 0
 
@@ -415,6 +438,10 @@ class GetUpSkill(Skill):
         self.residual: ResidualSource | None = default_residual() if residual is None else residual
         self._attempt = _Attempt()
         self.attempts = 0
+        #: get-up attempts (not side rolls) started so far
+        self.get_up_attempts = 0
+        #: the last failed back get-up's torso never came up (RETRY_NEVER_UP_TILT_DEG)
+        self.last_never_up = False
         #: the side the robot was found lying on when the current sequence started
         self.lying_on: str | None = None
 
@@ -433,6 +460,8 @@ class GetUpSkill(Skill):
     def reset(self) -> None:
         self._attempt = _Attempt()
         self.attempts = 0
+        self.get_up_attempts = 0
+        self.last_never_up = False
         self.lying_on = None
 
     def step(self, context: SkillContext) -> bool:
@@ -483,9 +512,9 @@ class GetUpSkill(Skill):
             self._attempt = _Attempt(KeyframePlayer(sequence, state.robot_type), rolling=True)
         else:
             sequence = _short_first_frame(
-                sequence_for(f"get_up_{side}", state.robot_type, self.sequences),
-                state.joints_deg,
+                self._get_up_sequence(side, state.robot_type), state.joints_deg
             )
+            self.get_up_attempts += 1
             player = KeyframePlayer(sequence, state.robot_type)
             sat_up, folded = (
                 (SAT_UP_FRAMES, FOLDED_FRAMES)
@@ -512,10 +541,26 @@ class GetUpSkill(Skill):
                 ),
             )
 
+    def _get_up_sequence(self, side: str, robot_type: int) -> KeyframeSequence:
+        """The get-up for ``side``: its retry version (:data:`RETRY_SUFFIX`) once an attempt
+        has failed and the type has one, else the type's own or the common one."""
+        base = f"get_up_{side}"
+        retry = f"{base}{RETRY_SUFFIX}"
+        never_up = _never_up_tilt_deg(robot_type) is None or self.last_never_up
+        if self.get_up_attempts > 0 and never_up and f"{retry}_type{robot_type}" in self.sequences:
+            base = retry
+        return sequence_for(base, robot_type, self.sequences)
+
     def _play(self, context: SkillContext, state: RobotState) -> bool:
         attempt = self._attempt
         player = attempt.player
         assert player is not None
+        attempt.least_tilt_deg = min(attempt.least_tilt_deg, state.tilt_deg)
+        if not attempt.rolling:
+            limit = _never_up_tilt_deg(state.robot_type)
+            self.last_never_up = (
+                limit is not None and self.lying_on == "back" and attempt.least_tilt_deg > limit
+            )
         if self._fell_back(state):
             self._attempt = _Attempt()  # lying again: settle briefly and start over
             self._hold_still(context, state)
@@ -617,6 +662,11 @@ class GetUpSkill(Skill):
     def _hold_still(self, context: SkillContext, state: RobotState) -> None:
         """While the body settles keep every joint where it is (no flailing)."""
         context.commands.set_targets(dict(state.joints_deg))
+
+
+def _never_up_tilt_deg(robot_type: int) -> float | None:
+    """The type's :data:`RETRY_NEVER_UP_TILT_DEG`."""
+    return RETRY_NEVER_UP_TILT_DEG.get(robot_type, RETRY_NEVER_UP_DEFAULT_DEG)
 
 
 def _legs_risen(player: KeyframePlayer, state: RobotState) -> bool:

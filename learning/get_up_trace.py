@@ -6,21 +6,32 @@ perceived tilt) next to the simulator's ground truth (torso pitch and roll, tors
 fraction of standing height), so a failed sit-up, a tip-over in the crouch or a roll that does
 not turn the body can be told apart.
 
+``--contacts`` adds the pairs of the robot's own parts that touch each other, with their summed
+normal force (N), and their impulses over the trial at the end. Why: the real rcssserver3d never
+collides a robot's parts with each other (``benchmarks/physics.py --variant noself``), and the
+back sit-ups of session 10 stood robots up only while the forearms pressed the rising thighs.
+
 Run (the trial numbers come from ``benchmarks/get_up.py --show-failures``)::
 
     .venv/bin/python learning/get_up_trace.py --type 1 --direction back --seed 1004
+    .venv/bin/python benchmarks/physics.py --variant noself --run learning/get_up_trace.py \\
+        --type 1 --direction back --seed 1001
 """
 
 from __future__ import annotations
 
 import argparse
+import collections
 import math
 import sys
 from pathlib import Path
 
+import pybullet
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.get_up import GetUpSkill
+from behaviors.joint_control import CYCLE_SECONDS
 from benchmarks.get_up import run_trial
 from learning.local_agent import LocalAgent
 from world.nao_model import ROBOT_TYPES
@@ -48,19 +59,40 @@ def trace_line(agent: LocalAgent, cycle: int) -> str:
     )
 
 
+def self_contact_forces(agent: LocalAgent, min_force: float = 1.0) -> dict[str, float]:
+    """Summed normal force (N) per pair of the robot's own links now (``a-b``, sorted), pairs
+    under ``min_force`` left out."""
+    robot = agent.robot
+    forces: dict[str, float] = collections.defaultdict(float)
+    for point in pybullet.getContactPoints(
+        bodyA=robot.body_id, bodyB=robot.body_id, physicsClientId=robot.world.client
+    ):
+        a, b = sorted((robot.link_name(point[3]), robot.link_name(point[4])))
+        forces[f"{a}-{b}"] += point[9] / 2.0  # a self-contact is reported from either side
+    return {pair: force for pair, force in forces.items() if force >= min_force}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--type", type=int, choices=ROBOT_TYPES, default=0)
     parser.add_argument("--direction", default="front")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--every", type=int, default=5, help="print every N-th cycle")
+    parser.add_argument("--contacts", action="store_true", help="self-contacts (N) too")
     args = parser.parse_args()
+    impulses: dict[str, float] = collections.defaultdict(float)
 
     def observe(agent: LocalAgent, cycle: int) -> None:
+        forces = self_contact_forces(agent) if args.contacts else {}
+        for pair, force in forces.items():
+            impulses[pair] += force * CYCLE_SECONDS
         if cycle % args.every == 0:
-            print(trace_line(agent, cycle))
+            pairs = " ".join(f"{p}:{f:.0f}" for p, f in sorted(forces.items(), key=lambda x: -x[1]))
+            print(trace_line(agent, cycle) + (f" | {pairs}" if args.contacts else ""))
 
     print(run_trial(args.type, args.direction, args.seed, observer=observe))
+    for pair, impulse in sorted(impulses.items(), key=lambda x: -x[1]):
+        print(f"self-contact impulse {pair}: {impulse:.1f} N s")
 
 
 if __name__ == "__main__":

@@ -540,16 +540,15 @@ def _package_without(monkeypatch, sequence_name: str) -> None:
 
 
 def test_a_front_get_up_tipping_back_is_caught_from_its_pitch_rate(monkeypatch):
-    """Benchmark fall type 1 seed 1500 (``--seed 500``, ends on the front): the front get-up
-    tips back in its squat; caught from the pitch predicted 0.1 s ahead, the back get-up that
-    follows has the robot standing within 4 s, caught from the pitch alone it does not. (With
-    type 1's front fold of session 8, lj4 -116.7: with today's -100 this fall gets up either
-    way.)"""
+    """Benchmark fall type 2 seed 2019 (``--seed 0``, ends on the front): the front get-up
+    tips back in its squat at 1.4 s; caught from the pitch predicted 0.1 s ahead, the back
+    get-up that follows has the robot standing at 3.72 s, caught from the pitch alone it does
+    not. (Until session 11 type 1 seed 1500 with its old front fold; type 1's new back get-up
+    brings that one up either way.)"""
     assert get_up_module.FRONT_ABORT_HORIZON_S > 0
-    _front_fold(monkeypatch, 1, -116.7)
-    assert run_trial(1, "front", 1500).succeeded
+    assert run_trial(2, "front", 2019).succeeded
     monkeypatch.setattr(get_up_module, "FRONT_ABORT_HORIZON_S", 0.0)
-    assert not run_trial(1, "front", 1500).succeeded
+    assert not run_trial(2, "front", 2019).succeeded
 
 
 def test_type3_side_roll_with_less_shoulder_push_brings_a_benchmark_fall_up(monkeypatch):
@@ -601,3 +600,87 @@ def test_a_late_retry_that_has_risen_counts_before_its_last_hold(monkeypatch):
     assert run_trial(3, "front", 3504).succeeded
     monkeypatch.setattr(get_up_module, "EARLY_STAND_DEG", None)
     assert not run_trial(3, "front", 3504).succeeded
+
+
+def test_type1_back_get_up_stands_without_self_collision(monkeypatch):
+    """Benchmark fall type 1 seed 1001 (``--seed 0``, ends on the back) under the real server's
+    rule that a robot's parts never touch each other (``benchmarks/physics.py --variant
+    noself``): with type 1's back get-up of session 11 (arms straight back at once, a slower
+    sit-up with less hip flexion) it stands within 4 s; with the one before (arms back only
+    during the sit-up, whose torso rose only while the forearms pressed the thighs) it stays
+    down. With self-collision both stand."""
+    from benchmarks.physics import VARIANTS
+
+    assert run_trial(1, "back", 1001).succeeded
+    with VARIANTS["noself"]():
+        assert run_trial(1, "back", 1001).succeeded
+        name = sequence_for("get_up_back", 1).name
+        entry = raw_entries()[name]
+        frames = entry["frames"]
+        frames[0].update(duration=0.2)
+        frames[0]["joints"].update(laj1=-70.7, raj1=-70.7)
+        frames[1].update(duration=0.53)
+        frames[1]["joints"].update(llj3=100.0, rlj3=100.0)
+        frames[2].update(duration=0.3)
+        old = candidate_sequences(name, entry)
+        monkeypatch.setattr(get_up_module, "default_sequences", lambda: old)
+        assert not run_trial(1, "back", 1001).succeeded
+    assert run_trial(1, "back", 1001).succeeded
+
+
+def test_the_search_scores_each_contact_rule_on_its_own_bank():
+    """``--rules current,noself``: one bank per rule, the robots of the second built without
+    self-collision, and the trials indexed over both banks in turn."""
+    from learning.get_up_search import make_rule_banks
+
+    banks = make_rule_banks(["current", "noself"], 1, ["back"], 1, 7)
+    try:
+        first, second = banks.banks
+        assert len(banks.states) == len(first.states) + len(second.states) == 2
+        collide = [b.session.agents[b.agent].robot.physics.self_collision for b in banks.banks]
+        assert collide == [True, False]
+        sequences = get_up_module.default_sequences()
+        assert banks.trial(1, sequences) == pytest.approx(second.trial(0, sequences))
+        with pytest.raises(IndexError):
+            banks.trial(2, sequences)
+    finally:
+        banks.close()
+
+
+def test_a_retry_version_plays_only_after_an_attempt_that_never_rose():
+    """``get_up_back_retry_type3`` replaces type 3's back get-up once an attempt has failed
+    without the torso coming within RETRY_NEVER_UP_TILT_DEG of vertical; types without a
+    retry version play their own sequence again."""
+    skill = GetUpSkill()
+    assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
+    skill.get_up_attempts = 1
+    assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
+    skill.last_never_up = True
+    assert skill._get_up_sequence("back", 3).name == "get_up_back_retry_type3"
+    assert skill._get_up_sequence("back", 0).name == "get_up_back_retry_type0"
+    assert skill._get_up_sequence("back", 2).name == "get_up_back_retry_type2"
+    assert skill._get_up_sequence("back", 4).name == "get_up_back_type4"
+    assert skill._get_up_sequence("front", 3).name == "get_up_front_type3"
+    skill.reset()
+    assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
+
+
+def test_type3_back_retry_stands_without_self_collision(monkeypatch):
+    """Benchmark fall type 3 seed 3001 (``--seed 0``, ends on the back) without self-collision
+    (``benchmarks/physics.py --variant noself``): the first sit-up rolls back over the
+    shoulders, the retry version rocks up from there and the robot stands within 4 s; playing
+    type 3's back get-up again it stays down. With self-collision the first attempt stands."""
+    from benchmarks.physics import VARIANTS
+
+    assert run_trial(3, "back", 3001).succeeded
+    with VARIANTS["noself"]():
+        assert run_trial(3, "back", 3001).succeeded
+        _package_without(monkeypatch, "get_up_back_retry_type3")
+        assert not run_trial(3, "back", 3001).succeeded
+
+
+def test_the_never_up_limit_is_per_type():
+    """Type 0's sit-up without self-collision stalls 40-50 deg short of upright, type 3's rolls
+    back: each type's retry waits for its own failure."""
+    assert get_up_module._never_up_tilt_deg(0) < get_up_module._never_up_tilt_deg(3)
+    assert get_up_module._never_up_tilt_deg(3) == get_up_module.RETRY_NEVER_UP_DEFAULT_DEG
