@@ -65,10 +65,10 @@ HOLD_HEADING_STEP_DEG = 30.0
 #: (:func:`head_yaw_for`): within HEAD_STILL_DEG of the torso's heading the head looks ahead,
 #: and it turns at most HEAD_YAW_MAX_DEG (the neck allows 120).
 HEAD_FREE_SKILLS = ("walk", "walk_velocity")
-#: a finishing aim (:attr:`AttackConfig.finish_m`) lies this far beyond the goal line (m)
-FINISH_AHEAD_M = 1.0
 HEAD_STILL_DEG = 30.0
 HEAD_YAW_MAX_DEG = 90.0
+#: a finishing aim (:attr:`AttackConfig.finish_m`) lies this far beyond the goal line (m)
+FINISH_AHEAD_M = 1.0
 
 
 def _default_formation() -> dict[int, tuple[float, float]]:

@@ -30,7 +30,6 @@ def run_sets(
     """Print one line per seed set and type, then the totals."""
     falls_by_type = dict.fromkeys(types, 0)
     errors_by_type: dict[int, list[float]] = {t: [] for t in types}
-    largest_by_type = dict.fromkeys(types, float("nan"))
     type_means: list[float] = []
     largest: list[float] = []
     reached_total = 0
@@ -47,7 +46,6 @@ def run_sets(
                     fell_runs.append(f"type{robot_type}/seed{seed}x{run_falls}")
             falls_by_type[robot_type] += falls
             errors_by_type[robot_type].extend(errors)
-            largest_by_type[robot_type] = np.nanmax([largest_by_type[robot_type], *errors])
             mean = float(np.mean(errors)) if errors else float("nan")
             top = max(errors, default=float("nan"))
             type_means.append(mean)
@@ -61,9 +59,10 @@ def run_sets(
     print(f"falls per type: {falls_by_type} total {sum(falls_by_type.values())}")
     for robot_type, errors in errors_by_type.items():
         mean = float(np.mean(errors)) if errors else float("nan")
+        top = max(errors, default=float("nan"))
         print(
             f"type{robot_type}: falls {falls_by_type[robot_type]} stop mean {mean:.3f} "
-            f"largest {largest_by_type[robot_type]:.3f} reached {len(errors)}"
+            f"largest {top:.3f} reached {len(errors)}"
         )
     print(f"fell runs: {' '.join(fell_runs) or '-'}")
     print(

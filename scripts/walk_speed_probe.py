@@ -139,13 +139,13 @@ def main() -> None:
     args = parser.parse_args()
     with walk_file_with(args.set) as walk_file:
         for robot_type in args.type:
-            speeds = []
+            speeds, falls = [], 0
             for k in range(args.starts):
                 beam = (-8.0 + 0.37 * k, 0.23 * k, 0.0)
                 figures = probe(robot_type, args.vx, args.seconds, walk_file, args.seed, beam)
                 speeds.append(figures["real_mps"])
+                falls += int(figures["fell"])
             if args.starts > 1:
-                falls = speeds.count(0.0)
                 print(
                     f"type{robot_type}: real m/s over {args.starts} starts: mean "
                     f"{np.mean(speeds):.3f}, slowest {min(speeds):.3f}, falls {falls}"

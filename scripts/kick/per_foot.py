@@ -18,6 +18,13 @@ PATTERN = re.compile(
 )
 
 
+def _median_miss(distances: list[float], asked: float | None) -> str:
+    """``, median miss X m`` (|distance - asked|), or nothing without ``asked`` or kicks."""
+    if asked is None or not distances:
+        return ""
+    return f", median miss {statistics.median(abs(d - asked) for d in distances):.2f} m"
+
+
 def main() -> None:
     args = sys.argv[1:]
     asked = None
@@ -39,18 +46,13 @@ def main() -> None:
         falls = sum(stage is not None for *_, stage in trials)
         median = statistics.median(kicked) if kicked else float("nan")
         over3 = sum(d >= 3.0 for d in kicked)
-        miss = ""
-        if asked is not None and kicked:
-            miss = f", median miss {statistics.median(abs(d - asked) for d in kicked):.2f} m"
         print(
             f"{foot:5s}: trials {len(trials)}, kicked {len(kicked)}, median {median:.2f} m, "
-            f">=3 m {over3}, falls {falls}{miss}"
+            f">=3 m {over3}, falls {falls}{_median_miss(kicked, asked)}"
         )
     every = [d for trials in rows.values() for d, k, _ in trials if k]
     if every:
-        miss = ""
-        if asked is not None:
-            miss = f", median miss {statistics.median(abs(d - asked) for d in every):.2f} m"
+        miss = _median_miss(every, asked)
         print(f"all  : median {statistics.median(every):.2f} m over {len(every)} kicks{miss}")
 
 
