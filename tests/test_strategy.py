@@ -729,3 +729,31 @@ def test_a_search_keeps_the_turn_it_started_with_until_the_ball_is_seen():
     assert turn_with((3.0, 0.5), 5.1) == ("walk_velocity", 0.0, 0.0, -SEARCH_TURN_DEG_S)
     assert turn_with((3.0, 0.5), 0.0)[0] != "walk_velocity"  # seen: the search is over
     assert turn_with((3.0, 0.5), 5.0) == ("walk_velocity", 0.0, 0.0, SEARCH_TURN_DEG_S)
+
+
+def test_a_far_approach_point_ahead_is_sprinted_to_and_walked_to_near_it_if_told_so():
+    attack = AttackConfig(sprint_m=2.0)
+    strategy = Strategy(StrategyConfig(attack=attack))
+    behavior = RecordingBehavior("walk", "walk_velocity", "dribble")
+    # ball 6 m ahead, 5 deg left of the heading: sprint, steering left within the cap
+    strategy.decide(world(ball=(0.0, 0.5), pose=(-6.0, 0.0, 0.0)), behavior)
+    name, vx, vy, turn = behavior.calls[-1]
+    assert (name, vx, vy) == ("walk_velocity", attack.sprint_speed_m_s, 0.0)
+    assert 0.0 < turn <= attack.sprint_max_turn_deg_s
+    # 30 deg off: a started sprint goes on (stop at 45) ...
+    strategy.decide(world(ball=(0.0, 3.5), pose=(-6.0, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][0] == "walk_velocity"
+    assert behavior.calls[-1][3] == pytest.approx(attack.sprint_max_turn_deg_s)
+    # ... but none starts (start within 10): a new player walks
+    fresh = RecordingBehavior("walk", "walk_velocity", "dribble")
+    Strategy(StrategyConfig(attack=attack)).decide(
+        world(ball=(0.0, 3.5), pose=(-6.0, 0.0, 0.0)), fresh
+    )
+    assert fresh.calls[-1][0] == "walk"
+    # within sprint_m of the approach point it walks there to face the goal
+    strategy.decide(world(ball=(0.0, 0.0), pose=(-1.5, 0.0, 0.0)), behavior)
+    assert behavior.calls[-1][0] == "walk"
+    # off by default
+    default = RecordingBehavior("walk", "walk_velocity", "dribble")
+    Strategy().decide(world(ball=(0.0, 0.5), pose=(-6.0, 0.0, 0.0)), default)
+    assert default.calls[-1][0] == "walk"
