@@ -34,7 +34,11 @@ way, a re-draw of the chaotic trials rather than a systematic gain), ABORT_TILT_
 FRONT_ABORT_BACK_DEG 35 360, FRONT_ABORT_HORIZON_S 0.15 358, ABORT_HORIZON_S 0.1 357;
 SETTLED_GYRO_DEG_S 60, EARLY_STAND_DEG 15, FLIPPED_AFTER_S 0.1 and MAX_SETTLE_S 0.5 change no
 trial. Type 1 alone (this script, ``--types 1``, base 71 of 80): RETRY_AT_ONCE_PITCH_DEG 80 68,
-RETRY_AT_ONCE_MAX_GYRO_DEG_S 150 68, ABORT_BACK_DEG 35 72. Tried in the skill and removed: a
+RETRY_AT_ONCE_MAX_GYRO_DEG_S 150 68, ABORT_BACK_DEG 35 72. Types 0 and 2 (screen, same four
+seeds, base 149 of 160): RETRY_AT_ONCE_MAX_GYRO_DEG_S 150 147, RETRY_AT_ONCE_PITCH_DEG 80 / None
+142 / 141, ABORT_BACK_DEG 50 146. Type 3 (base 63 of 80): RETRY_AT_ONCE_MAX_GYRO_DEG_S 100 / 200
+62 / 62, RETRY_AT_ONCE_PITCH_DEG 80 / None 61 / 61, SETTLED_CYCLES 2 62, ABORT_TILT_DEG 65 64
+(seed 500 one fewer). Tried in the skill and removed: a
 back sit-up abandoned once the torso lies with the gyro under 40 deg/s for 3 cycles (seed 0: 89
 -> 80, normal sit-ups pass through a quiet moment too); type 3's sit-up abandoned once it rolled
 back over the shoulders (pitch past -95 deg when the roll stops, or past -90 for 0.35 s): the
