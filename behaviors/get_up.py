@@ -556,13 +556,8 @@ class GetUpSkill(Skill):
         player = attempt.player
         assert player is not None
         attempt.least_tilt_deg = min(attempt.least_tilt_deg, state.tilt_deg)
-        if not attempt.rolling:
-            limit = _never_up_tilt_deg(state.robot_type)
-            self.last_never_up = (
-                limit is not None and self.lying_on == "back" and attempt.least_tilt_deg > limit
-            )
         if self._fell_back(state):
-            self._attempt = _Attempt()  # lying again: settle briefly and start over
+            self._end_attempt(state)  # lying again: settle briefly and start over
             self._hold_still(context, state)
             return False
         joints = self._balanced_joints(state)
@@ -577,13 +572,24 @@ class GetUpSkill(Skill):
             and (self._in_final_hold(player) or _legs_risen(player, state))
             and robot_stands(state)
         ):
-            self._attempt = _Attempt()  # up: the rest of the last hold only keeps the pose
+            self._end_attempt(state)  # up: the rest of the last hold only keeps the pose
             return True
         if not finished:
             return False
         # the sequence has sent its last targets: standing, or lying again (retry)
-        self._attempt = _Attempt()
+        self._end_attempt(state)
         return robot_stands(state) and not attempt.rolling
+
+    def _end_attempt(self, state: RobotState) -> None:
+        """Close the current attempt; a get-up attempt (not a roll) leaves whether its back
+        sit-up never came up (:data:`RETRY_NEVER_UP_TILT_DEG`), which picks the next one."""
+        attempt = self._attempt
+        if not attempt.rolling:
+            limit = _never_up_tilt_deg(state.robot_type)
+            self.last_never_up = (
+                limit is not None and self.lying_on == "back" and attempt.least_tilt_deg > limit
+            )
+        self._attempt = _Attempt()
 
     def _fell_back(self, state: RobotState) -> bool:
         """A get-up past its sit-up with the torso lying again or tipping back, or a front

@@ -11,6 +11,11 @@ attempt's end), which the benchmark may read to measure.
 Run (trials from ``benchmarks/get_up.py --show-failures``, ``TYPE:DIRECTION:SEED``)::
 
     .venv/bin/python learning/get_up_failures.py 1:front:1016 3:left:3010
+    .venv/bin/python learning/get_up_failures.py --time-limit 8 0:back:13
+
+With ``--time-limit 8`` a trial that stands only after the benchmark's 4 s shows where its
+time went: each attempt's start (after the wait for the body to settle), how long it played
+before it was abandoned or ended, and when the robot stood.
 """
 
 from __future__ import annotations
@@ -80,12 +85,20 @@ class TrialRecorder:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("trials", nargs="+", help="TYPE:DIRECTION:SEED")
+    parser.add_argument(
+        "--time-limit",
+        type=float,
+        default=4.0,
+        help="seconds the get-up may take (longer: when does a late trial stand)",
+    )
     args = parser.parse_args()
     for spec in args.trials:
         robot_type, direction, seed = spec.split(":")
         recorder = TrialRecorder()
-        result = run_trial(int(robot_type), direction, int(seed), observer=recorder)
-        outcome = "UP" if result.succeeded else "DOWN"
+        result = run_trial(
+            int(robot_type), direction, int(seed), args.time_limit, observer=recorder
+        )
+        outcome = f"UP at {result.time_s:.2f}s" if result.succeeded else "DOWN"
         print(f"type {robot_type} {direction} seed {seed} lying {result.lying_on}: {outcome}")
         for attempt in recorder.attempts:
             print("   ", attempt.line())

@@ -684,3 +684,40 @@ def test_the_never_up_limit_is_per_type():
     back: each type's retry waits for its own failure."""
     assert get_up_module._never_up_tilt_deg(0) < get_up_module._never_up_tilt_deg(3)
     assert get_up_module._never_up_tilt_deg(3) == get_up_module.RETRY_NEVER_UP_DEFAULT_DEG
+
+
+def test_a_gain_frame_shift_uses_the_gain_of_the_frame_just_played():
+    """``_shift_gain_targets`` re-sets a cycle's targets with ``frame_at(elapsed)`` after the
+    player's step: that must be the frame whose targets the step sent, at frame boundaries
+    too (else a residual's offsets would go out with the next frame's gain)."""
+    joints = {name: 0.0 for name in JointCommands(0).joint_names}
+    checked = 0
+    for name, sequence in get_up_module.default_sequences().items():
+        if not name.startswith("get_up"):
+            continue
+        player = KeyframePlayer(sequence, 0)
+        finished = False
+        while not finished:
+            _, played = player.targets(joints)
+            finished = player.step(JointCommands(0), joints)
+            assert player.frame_at(player.elapsed) is played, (name, player.elapsed)
+            checked += 1
+    assert checked > 1000
+
+
+def test_the_never_up_flag_is_left_by_the_attempt_that_ends():
+    """The retry version is picked from how the last get-up attempt ended: a back attempt whose
+    torso stayed further from vertical than the type's limit sets the flag, a roll leaves it."""
+    skill = GetUpSkill()
+    state = RobotState(0)
+    limit = get_up_module._never_up_tilt_deg(0)
+    skill.lying_on = "back"
+    skill._attempt = get_up_module._Attempt(least_tilt_deg=limit + 1.0)
+    skill._end_attempt(state)
+    assert skill.last_never_up
+    skill._attempt = get_up_module._Attempt(rolling=True, least_tilt_deg=limit - 1.0)
+    skill._end_attempt(state)
+    assert skill.last_never_up  # a roll does not say whether a sit-up rose
+    skill._attempt = get_up_module._Attempt(least_tilt_deg=limit - 1.0)
+    skill._end_attempt(state)
+    assert not skill.last_never_up
