@@ -18,7 +18,10 @@ four-cycle lag would cut off a fast swing before the foot reaches the ball.
 Each kick also says where it wants the ball (``ball_gap_m`` ahead of the toe, ``ball_side_m``
 outwards), which ``basic_kick`` aligns to, and may carry a calibration table ``distances``
 (strength -> metres, measured by ``benchmarks/kick.py``) from which :meth:`KickMotion.strength_for`
-picks the strength for a distance.
+picks the strength for a distance. A kick may instead be calibrated by its ball gap
+(``gap_distances``, metres -> gap): it then always swings at full strength and ``basic_kick``
+lines the ball up further ahead of the toe for a shorter kick (session 12's candidate against
+the slow swings' falls; see the end of ``kicks.yaml``).
 
 Sequences are looked up per robot type first (``kick_left_type3``), then by the common name, as
 the get-up does.
@@ -110,23 +113,37 @@ class KickMotion:
     #: measured (strength, metres) pairs, increasing in both (``benchmarks/kick.py``); empty
     #: when the kick has not been calibrated
     distances: tuple[tuple[float, float], ...] = ()
+    #: measured (metres, ball gap m) pairs at full strength, the distance increasing and the gap
+    #: decreasing: a kick whose distance is set by how far ahead of the toe the ball lies (the
+    #: foot meets a ball further ahead later in its swing, and it goes shorter) instead of by
+    #: a slower swing. When present it replaces ``distances``: the kick plays at full strength
+    #: and ``basic_kick`` lines the ball up at :meth:`gap_for`. Why: after the approach the
+    #: slow swings fell half the time (session 11: 20 / 21 falls of 40 kicks asked for 1.5 /
+    #: 2 m), the full-speed swing with the ball further ahead far less (session 12).
+    gap_distances: tuple[tuple[float, float], ...] = ()
 
     def strength_for(self, distance_m: float) -> float:
         """The strength (0..1) whose measured distance is ``distance_m``, interpolated linearly
-        in the calibration table and clipped to its ends. Raises ValueError without one."""
+        in the calibration table and clipped to its ends (1 for a kick calibrated by its ball
+        gap, :attr:`gap_distances`). Raises ValueError without a calibration."""
+        if self.gap_distances:
+            return 1.0
         if not self.distances:
             raise ValueError(f"kick {self.name!r} has no distance calibration")
-        table = self.distances
-        if distance_m <= table[0][1]:
-            return table[0][0]
-        for (s0, d0), (s1, d1) in itertools.pairwise(table):
-            if distance_m <= d1:
-                return s0 + (s1 - s0) * (distance_m - d0) / (d1 - d0)
-        return table[-1][0]
+        return _interpolate(self.distances, distance_m, 1, 0)
+
+    def gap_for(self, distance_m: float) -> float:
+        """The ball gap (m) that :attr:`gap_distances` gives for ``distance_m``, interpolated
+        linearly and clipped to its ends; the kick's own ``ball_gap_m`` without that table."""
+        if not self.gap_distances:
+            return self.ball_gap_m
+        return _interpolate(self.gap_distances, distance_m, 0, 1)
 
     @property
     def distance_range_m(self) -> tuple[float, float]:
         """The shortest and longest calibrated distance (m); (0, 0) without a calibration."""
+        if self.gap_distances:
+            return (self.gap_distances[0][0], self.gap_distances[-1][0])
         if not self.distances:
             return (0.0, 0.0)
         return (self.distances[0][1], self.distances[-1][1])
@@ -154,6 +171,20 @@ class KickMotion:
         return sum(frames[i].total for i in range(min(self.swing_frames)))
 
 
+def _interpolate(
+    table: tuple[tuple[float, float], ...], x: float, given: int, wanted: int
+) -> float:
+    """Column ``wanted`` of ``table`` at ``x`` in column ``given`` (increasing), linearly
+    interpolated and clipped to the table's ends."""
+    if x <= table[0][given]:
+        return table[0][wanted]
+    for a, b in itertools.pairwise(table):
+        if x <= b[given]:
+            share = (x - a[given]) / (b[given] - a[given])
+            return a[wanted] + (b[wanted] - a[wanted]) * share
+    return table[-1][wanted]
+
+
 def parse_kicks(data: Mapping[str, Any], source: str) -> dict[str, KickMotion]:
     """Build kick motions from the mapping read out of ``source`` (a file name, for messages)."""
     kicks = {}
@@ -169,24 +200,40 @@ def parse_kicks(data: Mapping[str, Any], source: str) -> dict[str, KickMotion]:
             ball_gap_m=check_number(entry.get("ball_gap_m", 0.03), f"{where}.ball_gap_m"),
             ball_side_m=check_number(entry.get("ball_side_m", 0.0), f"{where}.ball_side_m"),
             distances=_parse_distances(entry.get("distances", []), f"{where}.distances"),
+            gap_distances=_parse_gaps(entry.get("gap_distances", []), f"{where}.gap_distances"),
         )
     return kicks
 
 
-_KICK_OPTIONAL = {"description", "ball_gap_m", "ball_side_m", "distances"}
+_KICK_OPTIONAL = {"description", "ball_gap_m", "ball_side_m", "distances", "gap_distances"}
+
+
+def _parse_pairs(data: Any, where: str, columns: str) -> tuple[tuple[float, float], ...]:
+    """``[[a, b], ...]`` of numbers (``columns`` names a and b for the message)."""
+    if not isinstance(data, list) or not all(
+        isinstance(row, list) and len(row) == 2 for row in data
+    ):
+        raise PoseError(f"{where}: expected a list of [{columns}] pairs")
+    return tuple(
+        (check_number(a, f"{where}[{i}]"), check_number(b, f"{where}[{i}]"))
+        for i, (a, b) in enumerate(data)
+    )
+
+
+def _parse_gaps(data: Any, where: str) -> tuple[tuple[float, float], ...]:
+    """``[[metres, ball gap m], ...]`` with the distance increasing and the gap decreasing
+    (so that a distance names one gap)."""
+    table = _parse_pairs(data, where, "metres, ball gap m")
+    for (d0, g0), (d1, g1) in itertools.pairwise(table):
+        if not (d1 > d0 and g1 < g0):
+            raise PoseError(f"{where}: distances must increase and gaps decrease")
+    return table
 
 
 def _parse_distances(data: Any, where: str) -> tuple[tuple[float, float], ...]:
     """``[[strength, metres], ...]`` with both columns strictly increasing (so that a distance
     names one strength)."""
-    if not isinstance(data, list) or not all(
-        isinstance(row, list) and len(row) == 2 for row in data
-    ):
-        raise PoseError(f"{where}: expected a list of [strength, metres] pairs")
-    table = tuple(
-        (check_number(s, f"{where}[{i}]"), check_number(d, f"{where}[{i}]"))
-        for i, (s, d) in enumerate(data)
-    )
+    table = _parse_pairs(data, where, "strength, metres")
     for (s0, d0), (s1, d1) in itertools.pairwise(table):
         if not (s1 > s0 and d1 > d0):
             raise PoseError(f"{where}: strengths and distances must both increase")

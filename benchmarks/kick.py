@@ -49,7 +49,7 @@ import pybullet
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from behaviors.basic_kick import SHUFFLE_SETTLE_CYCLES, FootShuffle
+from behaviors.basic_kick import SHUFFLE_SETTLE_CYCLES, FootShuffle, ball_gap_for
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.kick import KickMotion, kick_motion, load_kicks
 from learning.local_agent import LocalAgent
@@ -166,10 +166,13 @@ def place_ball_in_front_of(
     return x, y
 
 
-def ball_placement_error(driver: LocalAgent, foot: str, motion: KickMotion) -> tuple[float, float]:
+def ball_placement_error(
+    driver: LocalAgent, foot: str, motion: KickMotion, gap: float | None = None
+) -> tuple[float, float]:
     """Ground truth: how far (m) the ball lies from where ``motion`` wants it, along ``foot``
     (+ = further ahead of the toe) and across it (+ = outwards); the inverse of
-    :func:`place_ball_in_front_of`."""
+    :func:`place_ball_in_front_of`. ``gap``: the gap ahead of the toe wanted (None: the
+    motion's ``ball_gap_m``; a kick calibrated by its gap wants the gap for the distance)."""
     robot = driver.robot
     name = "lfoot" if foot == "left" else "rfoot"
     transform = robot.body_world_transforms()[name]
@@ -178,7 +181,7 @@ def ball_placement_error(driver: LocalAgent, foot: str, motion: KickMotion) -> t
     ball = np.asarray(driver.session.ball.position())
     offset = ball - centre
     reach = robot.spec.body(name).size[1] / 2 + BALL_RADIUS
-    along = float(offset[:2] @ forward[:2]) - reach - motion.ball_gap_m
+    along = float(offset[:2] @ forward[:2]) - reach - (motion.ball_gap_m if gap is None else gap)
     across = float(offset[:2] @ outwards[:2]) - motion.ball_side_m
     return along, across
 
@@ -508,7 +511,8 @@ def run_basic_trial(
             before = session.ball.position()
             if placement is None and skill.phase == "kick" and skill.foot is not None:
                 motion = kick_motion(robot_type, settings.motions, skill.foot, aligned=True)
-                placement = ball_placement_error(driver, skill.foot, motion)
+                gap = ball_gap_for(motion, asked)
+                placement = ball_placement_error(driver, skill.foot, motion, gap)
             phase = skill.phase
             finished = driver.run("basic_kick", tx, ty, asked)
             cycles += 1

@@ -266,6 +266,34 @@ def test_a_distance_table_that_does_not_increase_is_refused():
         parse_kicks(data, "k.yaml")
 
 
+def test_a_gap_table_sets_the_distance_by_where_the_ball_lies_at_full_strength():
+    """A kick calibrated by its ball gap plays at full strength and asks for the ball further
+    ahead of the toe the shorter the kick; ``basic_kick`` lines up for that gap (the robot
+    stands further back), but a long kick keeps the motion's own gap."""
+    motion = replace(
+        default_kicks()[KICK_LEFT], gap_distances=((2.0, 0.08), (2.4, 0.06), (2.6, 0.045))
+    )
+    assert motion.strength_for(2.2) == 1.0
+    assert motion.gap_for(2.2) == pytest.approx(0.07)
+    assert motion.gap_for(1.0) == 0.08 and motion.gap_for(2.6) == 0.045
+    assert motion.distance_range_m == (2.0, 2.6)
+    assert replace(motion, gap_distances=()).gap_for(2.2) == motion.ball_gap_m
+    short, near = expected_ball_ego(0, "left", motion, 2.0), expected_ball_ego(0, "left", motion)
+    assert short[0] - near[0] == pytest.approx(0.08 - motion.ball_gap_m, abs=2e-3)
+    assert short[1] == pytest.approx(near[1], abs=2e-3)
+    assert expected_ball_ego(0, "left", motion, 3.0) == near  # beyond the table: long
+    assert expected_ball_ego(0, "left", motion, LONG) == near
+    data = {
+        "k": {
+            "frames": [{"duration": 0.1, "pose": "stand"}],
+            "swing": {"frames": [0], "fast_s": 0.1, "slow_s": 1},
+            "gap_distances": [[2.0, 0.06], [2.5, 0.07]],
+        }
+    }
+    with pytest.raises(PoseError, match="gaps decrease"):
+        parse_kicks(data, "k.yaml")
+
+
 def test_kick_spot_puts_the_ball_at_the_offset_facing_the_target():
     ball, target, offset = (1.0, 2.0), (1.0, 5.0), (0.18, 0.05)
     x, y, heading = kick_spot(ball, target, offset)

@@ -1,0 +1,164 @@
+"""Kick variants from the states that real approaches leave: each ``benchmarks/kick.py`` basic
+trial runs once up to the cycle it decides to kick (before the wait with the head up), is
+saved (simulator, world model and skills), and every variant then plays the wait and the kick
+from that saved moment.
+
+Run: ``PYTHONPATH=. nice -n 5 python scripts/kick/kick_bank.py --layout-seeds 0 1 --variants
+base:-:1.5 base:-:3 cand:/tmp/cand.yaml:1.5`` (``label:kicks file or -:distance``). Prints one
+line per trial and variant (distance, direction error, fall stage) and per variant the median
+distance, median |distance - asked|, falls before / after contact and misses.
+
+Why: the approach, the alignment and the choice of foot do not depend on the kick motion or
+the distance asked (every aligned motion wants the ball at the same spot), so a change to the
+kick needs the approach only once per layout: a screen of V variants costs one approach and
+V kicks per trial instead of V whole trials. A saved trial replayed with the packaged kicks
+gives the same result as the benchmark's trial (checked by the ``base`` variant)."""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import math
+import statistics
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from behaviors.basic_kick import strength_for, wants_long
+from behaviors.kick import KickMotion, kick_motion, load_kicks
+from benchmarks.kick import (
+    BASIC_KICK_FINISH_CYCLES,
+    BASIC_KICK_TIMEOUT_CYCLES,
+    MOVING_SPEED,
+    ROLL_OUT_CYCLES,
+    START,
+    place_ball,
+    random_basic_layout,
+    stand_up,
+)
+from learning.local_agent import LocalAgent
+from sim.session import Session, SessionConfig
+
+
+@dataclass(frozen=True)
+class Variant:
+    label: str
+    motions: Mapping[str, KickMotion] | None
+    asked: float | str
+
+
+def parse_variant(text: str) -> Variant:
+    """``label:FILE:D``: ``FILE`` a kick file or ``-`` (the packaged kicks); ``D`` metres,
+    ``long``, or ``sS`` for the aligned (not long) motion at strength ``S`` (calibration)."""
+    label, path, asked = text.split(":")
+    motions = None if path == "-" else load_kicks(Path(path))
+    return Variant(label, motions, asked if asked == "long" or asked[0] == "s" else float(asked))
+
+
+def play(driver: LocalAgent, variant: Variant, target: tuple[float, float], direction: float):
+    """Play the saved wait and kick with ``variant``'s motions and distance; (distance m,
+    direction error deg, fall stage or None, kicked)."""
+    skill = driver.behavior.skill("basic_kick")
+    for name in ("kick", "basic_kick"):
+        driver.behavior.skill(name).motions = variant.motions  # type: ignore[attr-defined]
+    motion = kick_motion(0, variant.motions, skill.foot, aligned=True)
+    fixed = isinstance(variant.asked, str) and variant.asked.startswith("s")
+    long = not fixed and wants_long(motion, variant.asked)
+    if long:
+        motion = kick_motion(0, variant.motions, skill.foot, aligned=True, long=True)
+    skill._long = long
+    strength = float(variant.asked[1:]) if fixed else strength_for(motion, variant.asked)
+    skill._strength = strength
+    session, robot = driver.session, driver.robot
+    start = session.ball.position()
+    contact, stage, finished, cycles = False, None, False, 0
+    while not finished and cycles < BASIC_KICK_FINISH_CYCLES + 100:
+        before = session.ball.position()
+        finished = driver.run("basic_kick", *target, 3.0)
+        cycles += 1
+        if not contact and session.ball.speed() > MOVING_SPEED:
+            contact, start = True, before
+        if stage is None and robot.has_fallen():
+            stage = "after_contact" if contact else "before_contact"
+    for _ in range(ROLL_OUT_CYCLES):
+        driver.run("pose", "stand")
+        if stage is None and robot.has_fallen():
+            stage = "after_kick"
+    x, y, _ = session.ball.position()
+    travel = math.degrees(math.atan2(y - start[1], x - start[0]))
+    error = (travel - direction + 180.0) % 360.0 - 180.0
+    return math.hypot(x - start[0], y - start[1]), error, stage, contact
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--layout-seeds", type=int, nargs="+", default=[0, 1])
+    parser.add_argument("--trials", type=int, default=20)
+    parser.add_argument("--variants", nargs="+", required=True)
+    args = parser.parse_args()
+    variants = [parse_variant(v) for v in args.variants]
+    rows: dict[str, list[tuple[float, float, str | None, bool]]] = {v.label: [] for v in variants}
+    for seed in args.layout_seeds:
+        rng = np.random.default_rng(seed + 1)
+        for k in range(args.trials):
+            distance, bearing, direction = random_basic_layout(rng)
+            session = Session(SessionConfig(seed=k, beam_noise=False))
+            try:
+                driver = stand_up(session, 0)
+                angle = math.radians(START[2] + bearing)
+                bx = START[0] + distance * math.cos(angle)
+                by = START[1] + distance * math.sin(angle)
+                place_ball(driver, bx, by)
+                driver.run("pose", "stand")
+                skill = driver.behavior.skill("basic_kick")
+                rad = math.radians(direction)
+                # the target's distance only sets the walk's heading; 10 m as for "long"
+                target = (bx + 10.0 * math.cos(rad), by + 10.0 * math.sin(rad))
+                cycles, fell = 0, False
+                while skill.phase != "head_up" and cycles < BASIC_KICK_TIMEOUT_CYCLES:
+                    driver.run("basic_kick", *target, 3.0)
+                    cycles += 1
+                    fell |= driver.robot.has_fallen()
+                if skill.phase != "head_up" or fell:
+                    for v in variants:
+                        rows[v.label].append((0.0, 0.0, "before_kick" if fell else None, False))
+                    print(f"# seed {seed} trial {k}: no kick (fell {fell})", flush=True)
+                    continue
+                snapshot = session.save_state()
+                saved = copy.deepcopy((driver.world, driver.behavior))
+                for v in variants:
+                    session.restore_state(snapshot)
+                    driver.world, driver.behavior = copy.deepcopy(saved)
+                    result = play(driver, v, target, direction)
+                    rows[v.label].append(result)
+                    d, e, stage, kicked = result
+                    print(
+                        f"# seed {seed} trial {k} {skill.foot} {v.label}: {d:.2f} m, "
+                        f"{e:+.1f} deg, {stage}, kicked {kicked}",
+                        flush=True,
+                    )
+            finally:
+                session.close()
+    for v in variants:
+        results = rows[v.label]
+        kicked = [r for r in results if r[3]]
+        distances = [r[0] for r in kicked]
+        falls = [r[2] for r in results if r[2] is not None]
+        median = statistics.median(distances) if distances else math.nan
+        miss = (
+            statistics.median(abs(d - v.asked) for d in distances)
+            if distances and not isinstance(v.asked, str)
+            else math.nan
+        )
+        print(
+            f"{v.label} asked {v.asked}: median {median:.2f} m, miss {miss:.2f} m, falls "
+            f"{len(falls)} (before contact {falls.count('before_contact')}, after "
+            f"{falls.count('after_contact') + falls.count('after_kick')}, before kick "
+            f"{falls.count('before_kick')}), misses {len(results) - len(kicked)} of {len(results)}"
+        )
+
+
+if __name__ == "__main__":
+    main()
