@@ -54,6 +54,10 @@ __all__ = [
 ]
 
 WALK_FILE = Path(__file__).resolve().parent / "data" / "walk.yaml"
+#: walk settings newer than the kick's walk (the ``inside_skills`` block of walk.yaml): inside
+#: another skill they keep their defaults (off) unless that block sets them, so the kick walks
+#: as it was tuned and the block stays as the kick's owner left it (session 12)
+OFF_INSIDE_SKILLS = ("go_to_fast_speed",)
 #: what the heading drift may be measured against (``WalkParameters.heading_hold_reference``)
 HEADING_HOLD_REFERENCES = ("command", "step")
 
@@ -221,7 +225,8 @@ def walk_parameters(
 ) -> WalkParameters:
     """The walk parameters of ``robot_type``: the file's ``default`` block overridden by its
     ``type<N>`` block (both may hold a ``step`` sub-block), and with ``inside_skill`` (the walk
-    run by another skill) the ``inside_skills`` block's keys on top."""
+    run by another skill) the ``inside_skills`` block's keys on top; there the keys of
+    :data:`OFF_INSIDE_SKILLS` keep their defaults unless that block sets them."""
     if robot_type not in ROBOT_TYPES:
         raise ValueError(f"robot type must be one of {ROBOT_TYPES}, got {robot_type!r}")
     data = yaml.safe_load(path.read_text()) or {}
@@ -230,6 +235,10 @@ def walk_parameters(
     nested = dict(data.get("inside_skills") or {}) if inside_skill else {}
     step = {**(base.get("step") or {}), **(own.get("step") or {}), **(nested.get("step") or {})}
     merged = {**base, **own, **nested, "step": step}
+    if inside_skill:
+        for name in OFF_INSIDE_SKILLS:
+            if name not in nested:
+                merged.pop(name, None)
     return _read_parameters(merged, f"{path} (type{robot_type})")
 
 

@@ -601,7 +601,19 @@ def test_walking_to_a_far_target_straight_on_may_go_faster_than_the_cap():
     top = replace(fast, go_to_fast_speed=5.0)
     step = top.step
     assert forward(top, 5.0, 0.0) == pytest.approx(step.max_forward / (step.step_cycles * 0.02))
-    assert walk_parameters(0, inside_skill=True).go_to_fast_speed == 0.0  # not in the kick
+
+
+def test_newer_go_to_settings_stay_off_inside_other_skills(tmp_path):
+    """Session 12: a setting of :data:`~behaviors.walk.OFF_INSIDE_SKILLS` set in walk.yaml's
+    ``default`` or ``typeN`` block keeps its default inside another skill (the kick walks as
+    tuned) unless the ``inside_skills`` block sets it."""
+    on = with_settings(["default.go_to_fast_speed=0.8"], tmp_path, WALK_FILE)
+    assert walk_parameters(0, on).go_to_fast_speed == 0.8
+    assert walk_parameters(0, on, inside_skill=True).go_to_fast_speed == 0.0
+    assert walk_parameters(0, on, inside_skill=True) == walk_parameters(0, inside_skill=True)
+    (tmp_path / "set").mkdir()
+    both = with_settings(["inside_skills.go_to_fast_speed=0.7"], tmp_path / "set", on)
+    assert walk_parameters(0, both, inside_skill=True).go_to_fast_speed == 0.7
 
 
 def test_the_heel_strike_fades_with_the_steps_turn():
