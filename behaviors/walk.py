@@ -54,6 +54,10 @@ __all__ = [
 ]
 
 WALK_FILE = Path(__file__).resolve().parent / "data" / "walk.yaml"
+#: walk settings newer than the kick's walk (the ``inside_skills`` block of walk.yaml): inside
+#: another skill they keep their defaults (off) unless that block sets them, so the kick walks
+#: as it was tuned and the block stays as the kick's owner left it (session 12)
+OFF_INSIDE_SKILLS = ("go_to_fast_speed",)
 #: what the heading drift may be measured against (``WalkParameters.heading_hold_reference``)
 HEADING_HOLD_REFERENCES = ("command", "step")
 
@@ -102,6 +106,20 @@ class WalkParameters:
     #: max_forward per step): turning or braking at full speed tipped robots over in random
     #: target walks (5 falls in 3 x 60 s on types 1, 3 and 4 at 0.15 m steps)
     walk_to_max_speed: float = math.inf
+    #: walking to a target, the fastest forward speed (m/s) on a straight stretch: facing the
+    #: way of travel with the heading within ``go_to_fast_heading_deg`` of it, the cap rises
+    #: from ``walk_to_max_speed`` (at that heading error) to this (heading on the way);
+    #: turning and near the target (``GoToGains.position_gain``) it stays as it was. Why
+    #: (session 12): the cap was set for the turns and stops that tipped robots at 0.75 m/s
+    #: (session 7), and players walk to the ball and their places with ``walk``, mostly
+    #: straight on. 0 (the default) is off: ``walk_to_max_speed`` everywhere.
+    go_to_fast_speed: float = 0.0
+    go_to_fast_heading_deg: float = 10.0
+    #: ... and only far from the target: fully from this distance (m) on, not at all within
+    #: half of it (linear in between). Why: at 0.8 m/s up to 0.5 m before the target (the
+    #: position gain's own slow-down starts at 0.53 m) type 1's foot spun and it fell
+    #: (run seed 4108, session 12)
+    go_to_fast_distance_m: float = 2.0
     #: turn correction (deg/s) per degree of heading drift from the commanded turn (gyro)
     heading_hold_gain: float = 0.0
     #: what the gyro's turn is compared with to measure the drift: "command" (the smoothed
@@ -149,6 +167,9 @@ class WalkParameters:
     #: (scripts/walk_seed_sets.py, two groups of 12 sets: types 0 and 1 0 -> 1 each on one,
     #: types 2 and 3 0 -> 1 and 0 -> 4 on the other)
     go_to_heel_strike: bool = True
+    #: walking to a target with the heel strike, the step's ``heel_strike_turn_fade`` (rad of
+    #: turn per step at which the heel strike has faded out; 0, the default, no fade)
+    go_to_heel_strike_turn_fade: float = 0.0
     #: walking to a target: within this distance (m) of it the command has the
     #: ``odometry_drift`` taken off (feed-forward: the robot then really moves at the velocity
     #: it wants). Why (session 9): at the 0.2 m/s approach floor the drift (-0.1 m/s forward
@@ -204,7 +225,8 @@ def walk_parameters(
 ) -> WalkParameters:
     """The walk parameters of ``robot_type``: the file's ``default`` block overridden by its
     ``type<N>`` block (both may hold a ``step`` sub-block), and with ``inside_skill`` (the walk
-    run by another skill) the ``inside_skills`` block's keys on top."""
+    run by another skill) the ``inside_skills`` block's keys on top; there the keys of
+    :data:`OFF_INSIDE_SKILLS` keep their defaults unless that block sets them."""
     if robot_type not in ROBOT_TYPES:
         raise ValueError(f"robot type must be one of {ROBOT_TYPES}, got {robot_type!r}")
     data = yaml.safe_load(path.read_text()) or {}
@@ -213,6 +235,10 @@ def walk_parameters(
     nested = dict(data.get("inside_skills") or {}) if inside_skill else {}
     step = {**(base.get("step") or {}), **(own.get("step") or {}), **(nested.get("step") or {})}
     merged = {**base, **own, **nested, "step": step}
+    if inside_skill:
+        for name in OFF_INSIDE_SKILLS:
+            if name not in nested:
+                merged.pop(name, None)
     return _read_parameters(merged, f"{path} (type{robot_type})")
 
 
@@ -662,6 +688,8 @@ class WalkSkill(WalkSkillBase):
         step = params.step
         if not params.go_to_heel_strike:
             step = replace(step, speed_heel_strike=0.0)
+        elif params.go_to_heel_strike_turn_fade > 0.0:
+            step = replace(step, heel_strike_turn_fade=params.go_to_heel_strike_turn_fade)
         return replace(
             params,
             step=step,
@@ -734,6 +762,10 @@ class WalkSkill(WalkSkillBase):
         step = engine.params.step
         duration = step.step_cycles * CYCLE_SECONDS
         max_forward = min(step.max_forward / duration, engine.params.walk_to_max_speed)
+        if facing_travel:
+            max_forward = _straight_cap(
+                engine.params, step.max_forward / duration, max_forward, heading_error, distance
+            )
         max_side = step.max_side / duration
         speed = max(min(g.position_gain * distance, max_forward), g.min_speed)
         vx = speed * forward / max(distance, 1e-9)
@@ -754,6 +786,26 @@ class WalkSkill(WalkSkillBase):
         vy = max(-max_side, min(max_side, vy))
         vturn = max(-g.max_turn_deg, min(g.max_turn_deg, g.heading_gain * heading_error))
         return vx, vy, vturn
+
+
+def _straight_cap(
+    params: WalkParameters,
+    step_top: float,
+    cap: float,
+    heading_error_deg: float,
+    distance: float,
+) -> float:
+    """The forward cap of ``walk`` facing the way of travel: ``cap`` rising to
+    ``go_to_fast_speed`` (at most the step's top speed ``step_top``) as the heading error
+    falls from ``go_to_fast_heading_deg`` to 0 and the distance left grows from half of
+    ``go_to_fast_distance_m`` to all of it; ``cap`` with the fast speed off."""
+    fast = min(params.go_to_fast_speed, step_top)
+    if fast <= cap:
+        return cap
+    straight = max(0.0, 1.0 - abs(heading_error_deg) / max(params.go_to_fast_heading_deg, 1e-9))
+    half = 0.5 * params.go_to_fast_distance_m
+    far = min(1.0, max(0.0, (distance - half) / half)) if half > 0.0 else 1.0
+    return cap + (fast - cap) * straight * far
 
 
 def _looked_ahead(

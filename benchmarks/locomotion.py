@@ -67,6 +67,16 @@ class WalkDriver(LocalAgent):
     def fallen(self) -> bool:
         return self.robot.has_fallen()
 
+    def walk_cycle(self, target: tuple[float, float, float | None]) -> tuple[bool, bool]:
+        """One cycle of ``walk`` to ``target``: (fell, arrived). A robot that fell is stood up
+        again where it lies (:meth:`put_back`), as the random-target figures count falls."""
+        done = self.run("walk", *target)
+        if self.fallen():
+            x, y, _ = self.ground_pose()
+            self.put_back(x, y)
+            return True, False
+        return False, done
+
     def put_back(self, x: float, y: float, tries: int = PUT_BACK_TRIES) -> bool:
         """The trainer stands the robot up again (after a fall), trying again while it is not
         standing; whether it stands. Why: the robot sometimes falls over again while rising
@@ -161,12 +171,8 @@ def random_targets(
         target = _random_target(rng)
         cycles = round(seconds / 0.02)
         for _ in range(cycles):
-            done = driver.run("walk", *target)
-            if driver.fallen():
-                falls += 1
-                x, y, _ = driver.ground_pose()
-                driver.put_back(x, y)
-                continue
+            fell, done = driver.walk_cycle(target)
+            falls += fell
             if done:
                 x, y, _ = driver.ground_pose()
                 errors.append(math.hypot(x - target[0], y - target[1]))

@@ -568,3 +568,74 @@ def test_a_rolling_torso_opens_the_swing_foot_on_its_own_side_only(roll):
     assert WalkVelocitySkill().engine_parameters(walk_parameters(2)).landing_roll_lean_gain == 0
     inside = walk_parameters(2, inside_skill=True)
     assert WalkSkill().engine_parameters(inside).landing_roll_lean_gain == 0.0
+
+
+def test_walking_to_a_far_target_straight_on_may_go_faster_than_the_cap():
+    """Session 12: ``go_to_fast_speed`` raises ``walk``'s forward cap facing the way of travel
+    far from the target (fully from ``go_to_fast_distance_m`` on), fully with the heading on
+    the way and not at all from ``go_to_fast_heading_deg`` off it; near the target and with it
+    off (0, the default) the cap is ``walk_to_max_speed``. Never above what the step allows."""
+    base = replace(walk_parameters(0), go_to_fast_speed=0.0)
+    fast = replace(base, go_to_fast_speed=0.8, go_to_fast_heading_deg=10.0)
+    skill = WalkSkill()
+
+    def forward(params: WalkParameters, x: float, y: float, heading: float = 0.0) -> float:
+        skill.reset()
+        return skill._velocity(WalkEngine(0, params), 0.0, 0.0, heading, x, y, None)[0]
+
+    cap = base.walk_to_max_speed
+    assert forward(base, 5.0, 0.0) == pytest.approx(cap)
+    assert forward(fast, 5.0, 0.0) == pytest.approx(0.8)
+    # 5 deg off the way: halfway between (and the turn-first slow-down on top)
+    slow = math.cos(math.radians(10.0))
+    assert forward(fast, 5.0, 0.0, heading=-5.0) == pytest.approx(
+        (cap + (0.8 - cap) * 0.5) * slow * math.cos(math.radians(5.0)), rel=1e-3
+    )
+    assert forward(fast, 5.0, 0.0, heading=-12.0) == pytest.approx(
+        forward(base, 5.0, 0.0, heading=-12.0)
+    )
+    assert forward(fast, 0.3, 0.0) == forward(base, 0.3, 0.0)  # near: the position gain
+    # within go_to_fast_distance_m (2 m) less, within half of it not at all
+    assert forward(fast, 1.5, 0.0) == pytest.approx(cap + (0.8 - cap) * 0.5)
+    assert forward(fast, 0.9, 0.0) == pytest.approx(cap)
+    top = replace(fast, go_to_fast_speed=5.0)
+    step = top.step
+    assert forward(top, 5.0, 0.0) == pytest.approx(step.max_forward / (step.step_cycles * 0.02))
+
+
+def test_newer_go_to_settings_stay_off_inside_other_skills(tmp_path):
+    """Session 12: a setting of :data:`~behaviors.walk.OFF_INSIDE_SKILLS` set in walk.yaml's
+    ``default`` or ``typeN`` block keeps its default inside another skill (the kick walks as
+    tuned) unless the ``inside_skills`` block sets it."""
+    on = with_settings(["default.go_to_fast_speed=0.8"], tmp_path, WALK_FILE)
+    assert walk_parameters(0, on).go_to_fast_speed == 0.8
+    assert walk_parameters(0, on, inside_skill=True).go_to_fast_speed == 0.0
+    assert walk_parameters(0, on, inside_skill=True) == walk_parameters(0, inside_skill=True)
+    (tmp_path / "set").mkdir()
+    both = with_settings(["inside_skills.go_to_fast_speed=0.7"], tmp_path / "set", on)
+    assert walk_parameters(0, both, inside_skill=True).go_to_fast_speed == 0.7
+
+
+def test_the_heel_strike_fades_with_the_steps_turn():
+    """Session 12: with ``heel_strike_turn_fade`` a step turning by t lands toe-up by
+    ``speed_heel_strike * (1 - |t| / fade)`` (none from the fade on); 0 (the default) keeps the
+    full heel strike on turning steps, bit for bit. Walking to a target it comes from
+    ``go_to_heel_strike_turn_fade``."""
+    params = StepParameters(max_forward=0.14, max_turn=0.2, speed_heel_strike=0.12)
+    faded = replace(params, heel_strike_turn_fade=0.1)
+
+    def landing_pitch(p: StepParameters, turn: float) -> float:
+        last = _steady_steps(p, StepCommand(0.14, 0.0, turn))[-1]
+        assert last.t == 7
+        return last.left_pitch if last.left_active else last.right_pitch
+
+    assert landing_pitch(params, 0.05) == pytest.approx(0.12)
+    assert landing_pitch(faded, 0.0) == pytest.approx(0.12)
+    assert landing_pitch(faded, 0.05) == pytest.approx(0.06)
+    assert landing_pitch(faded, -0.05) == pytest.approx(0.06)
+    assert landing_pitch(faded, 0.15) == 0.0 and landing_pitch(faded, -0.15) == 0.0
+    with pytest.raises(ValueError):
+        StepParameters(heel_strike_turn_fade=-0.1)
+    walking = replace(walk_parameters(0), go_to_heel_strike=True, go_to_heel_strike_turn_fade=0.1)
+    assert WalkSkill().engine_parameters(walking).step.heel_strike_turn_fade == 0.1
+    assert WalkVelocitySkill().engine_parameters(walking).step.heel_strike_turn_fade == 0.0
