@@ -55,7 +55,8 @@ def trace_line(agent: LocalAgent, cycle: int) -> str:
     state = agent.state
     return (
         f"t {cycle * 0.02:4.2f} attempt {skill.attempts} on {skill.lying_on} {playing:28s} "
-        f"tilt {state.tilt_deg:5.1f} gyro {float(abs(state.gyro_deg_s).max()):4.0f} | pitch {pitch:6.1f} roll {roll:6.1f} height {height:4.2f}"
+        f"tilt {state.tilt_deg:5.1f} gyro {float(abs(state.gyro_deg_s).max()):4.0f} | "
+        f"pitch {pitch:6.1f} roll {roll:6.1f} height {height:4.2f}"
     )
 
 
