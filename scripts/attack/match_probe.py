@@ -8,7 +8,8 @@ repeat the benchmark's for a seed on one machine.
 Run: ``python scripts/attack/match_probe.py --seed S [--duration 120] [--set KEY=VALUE ...]``;
 prints the score, per team the seconds its active player spent per skill, the seconds with the
 ball contested (players of both teams within ``CONTEST_M`` of it), ball-lost seconds, and each
-fall: time, team, unum, distance to the ball, nearest opponent, skill before the fall.
+fall: time, team, unum, distance to the ball, nearest opponent, nearest teammate, skill
+before the fall.
 """
 
 from __future__ import annotations
@@ -93,12 +94,19 @@ def main() -> None:
                     label += "+shot"
                 active_time[key[0]][label] += CYCLE_S
         for key, skill in new_falls:
-            opp = min(
-                (math.dist(p, places[key]) for k, p in places.items() if k[0] != key[0]),
-                default=99.0,
+            opp, mate = (
+                min(
+                    (
+                        math.dist(p, places[key])
+                        for k, p in places.items()
+                        if (k[0] == key[0]) == same and k != key
+                    ),
+                    default=99.0,
+                )
+                for same in (False, True)
             )
             dist = math.dist(places[key], (bx, by))
-            falls.append((session.referee.game_time, key, dist, skill, opp))
+            falls.append((session.referee.game_time, key, dist, skill, opp, mate))
         near = {
             t: min((math.dist(p, (bx, by)) for k, p in places.items() if k[0] == t), default=99)
             for t in "LR"
@@ -142,8 +150,11 @@ def main() -> None:
         print(f"  {team} active: " + ", ".join(f"{k} {v:.0f}" for k, v in items))
     print("  ball near: " + ", ".join(f"{k} {v:.0f}" for k, v in contested.items()))
     print("  ball x zone: " + ", ".join(f"{k:+d} {v:.0f}" for k, v in sorted(zones.items())))
-    for t, key, dist, skill, opp in falls:
-        print(f"  fall {t:6.1f} {key[0]}{key[1]} ball {dist:4.2f} opp {opp:4.2f} after {skill}")
+    for t, key, dist, skill, opp, mate in falls:
+        print(
+            f"  fall {t:6.1f} {key[0]}{key[1]} ball {dist:4.2f} opp {opp:4.2f} "
+            f"mate {mate:4.2f} after {skill}"
+        )
 
 
 if __name__ == "__main__":
