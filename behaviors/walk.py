@@ -761,10 +761,11 @@ class WalkSkill(WalkSkillBase):
         g = replace(self.gains, max_turn_deg=engine.params.go_to_max_turn_deg)
         step = engine.params.step
         duration = step.step_cycles * CYCLE_SECONDS
-        max_forward = min(step.max_forward / duration, engine.params.walk_to_max_speed)
+        step_top = step.max_forward / duration
+        max_forward = min(step_top, engine.params.walk_to_max_speed)
         if facing_travel:
             max_forward = _straight_cap(
-                engine.params, step.max_forward / duration, max_forward, heading_error, distance
+                engine.params, step_top, max_forward, heading_error, distance
             )
         max_side = step.max_side / duration
         speed = max(min(g.position_gain * distance, max_forward), g.min_speed)

@@ -475,6 +475,20 @@ def _basic_trial_goes_on(cycles: int, phase: str) -> bool:
     return phase == "kick" and cycles < BASIC_KICK_TIMEOUT_CYCLES + BASIC_KICK_FINISH_CYCLES
 
 
+def place_basic_ball(
+    driver: LocalAgent, ball_distance: float, ball_bearing_deg: float
+) -> tuple[float, float]:
+    """Put the ball of a basic-kick layout ``ball_distance`` m away at ``ball_bearing_deg``
+    from the facing of a robot standing at :data:`START`, and stand one cycle; the ball's
+    (x, y)."""
+    angle = math.radians(START[2] + ball_bearing_deg)
+    bx = START[0] + ball_distance * math.cos(angle)
+    by = START[1] + ball_distance * math.sin(angle)
+    place_ball(driver, bx, by)
+    driver.run("pose", "stand")
+    return bx, by
+
+
 def run_basic_trial(
     asked: float | str,
     seed: int,
@@ -494,11 +508,7 @@ def run_basic_trial(
     try:
         driver = stand_up(session, robot_type, settings)
         robot = driver.robot
-        angle = math.radians(START[2] + ball_bearing_deg)
-        bx = START[0] + ball_distance * math.cos(angle)
-        by = START[1] + ball_distance * math.sin(angle)
-        place_ball(driver, bx, by)
-        driver.run("pose", "stand")
+        bx, by = place_basic_ball(driver, ball_distance, ball_bearing_deg)
         reach = 10.0 if isinstance(asked, str) else asked
         direction = math.radians(target_direction_deg)
         tx, ty = bx + reach * math.cos(direction), by + reach * math.sin(direction)

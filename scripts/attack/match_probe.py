@@ -36,6 +36,19 @@ CONTEST_M = 0.7
 CYCLE_S = 0.02
 
 
+def _nearest(places: dict, key: tuple, same_team: bool) -> float:
+    """Distance (m) from the robot ``key`` to the nearest other robot of its own team
+    (``same_team``) or of the other (99 with none)."""
+    return min(
+        (
+            math.dist(place, places[key])
+            for other, place in places.items()
+            if other != key and (other[0] == key[0]) == same_team
+        ),
+        default=99.0,
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--players", type=int, default=3)
@@ -94,17 +107,8 @@ def main() -> None:
                     label += "+shot"
                 active_time[key[0]][label] += CYCLE_S
         for key, skill in new_falls:
-            opp, mate = (
-                min(
-                    (
-                        math.dist(p, places[key])
-                        for k, p in places.items()
-                        if (k[0] == key[0]) == same and k != key
-                    ),
-                    default=99.0,
-                )
-                for same in (False, True)
-            )
+            opp = _nearest(places, key, same_team=False)
+            mate = _nearest(places, key, same_team=True)
             dist = math.dist(places[key], (bx, by))
             falls.append((session.referee.game_time, key, dist, skill, opp, mate))
         near = {
