@@ -11,8 +11,12 @@ distance, median |distance - asked|, falls before / after contact and misses.
 Why: the approach, the alignment and the choice of foot do not depend on the kick motion or
 the distance asked (every aligned motion wants the ball at the same spot), so a change to the
 kick needs the approach only once per layout: a screen of V variants costs one approach and
-V kicks per trial instead of V whole trials. A saved trial replayed with the packaged kicks
-gives the same result as the benchmark's trial (checked by the ``base`` variant)."""
+V kicks per trial instead of V whole trials. The replay is not trial for trial the benchmark's
+(compare variants with the ``base`` variant, not with ``benchmarks/kick.py``): layout seed 0's
+trials 0 and 1 asked for 3 m go 3.19 / 3.58 m here and 3.71 / 2.94 m in the benchmark, and the
+packaged kicks fell 18 / 16 times here against 20 / 21 in the benchmark asked for 1.5 / 2.0 m;
+something of the agent's state outside its world model and behaviours (or the restore) differs
+after the saved moment, and the physics is chaotic enough to amplify it."""
 
 from __future__ import annotations
 
@@ -33,8 +37,7 @@ from benchmarks.kick import (
     BASIC_KICK_TIMEOUT_CYCLES,
     MOVING_SPEED,
     ROLL_OUT_CYCLES,
-    START,
-    place_ball,
+    place_basic_ball,
     random_basic_layout,
     stand_up,
 )
@@ -107,11 +110,7 @@ def main() -> None:
             session = Session(SessionConfig(seed=k, beam_noise=False))
             try:
                 driver = stand_up(session, 0)
-                angle = math.radians(START[2] + bearing)
-                bx = START[0] + distance * math.cos(angle)
-                by = START[1] + distance * math.sin(angle)
-                place_ball(driver, bx, by)
-                driver.run("pose", "stand")
+                bx, by = place_basic_ball(driver, distance, bearing)
                 skill = driver.behavior.skill("basic_kick")
                 rad = math.radians(direction)
                 # the target's distance only sets the walk's heading; 10 m as for "long"
