@@ -25,7 +25,9 @@ benchmark 0.89 / 0.92 / 0.88 / 0.92 -> 0.89 / 0.93 / 0.88 / 0.91 on the tuned se
 towards the ground: +2 on benchmark seed 0, no trial changed on seeds 500-5000, 10000-70000,
 9 -> 8 of 15 such postures of seeds 80000-110000; the back get-up at once from one turned
 more than 35 deg towards the sky: 37 -> 39 of 52 on the benchmark's side trials, 39 -> 39 of
-51 here, 69 -> 67 of 81 on the fresh ones.
+51 here, 69 -> 67 of 81 on the fresh ones. Kept: the roll's upper arm swung back only to
+aj1 -90 (was -120), all types (figures in ``roll_left_to_back``'s description); on top of it
+the 0.6 s roll again 45 -> 43 of 52 on the benchmark's side trials.
 
 Run::
 
