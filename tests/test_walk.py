@@ -701,7 +701,9 @@ def test_walk_reports_arrival_only_after_fresh_frames_seen_standing_agree():
 
 def test_the_settle_stays_off_inside_other_skills(tmp_path):
     """Session 13: ``go_to_settle_frames``, a key of :data:`~behaviors.walk.OFF_INSIDE_SKILLS`,
-    is off inside the kick (its walk stays as tuned) wherever walk.yaml turns it on."""
+    is on walking to targets and off inside the kick (its walk stays as tuned)."""
+    assert walk_parameters(4).go_to_settle_frames > 0
+    assert walk_parameters(4, inside_skill=True).go_to_settle_frames == 0
     on = with_settings(["default.go_to_settle_frames=8"], tmp_path, WALK_FILE)
     assert walk_parameters(4, on).go_to_settle_frames == 8
     assert walk_parameters(4, on, inside_skill=True).go_to_settle_frames == 0
