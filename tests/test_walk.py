@@ -177,6 +177,7 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
         "go_to_pitch_back_deg": own.go_to_pitch_back_deg,
         "go_to_drift_feedforward_m": own.go_to_drift_feedforward_m,
         "go_to_landing_roll_lean_gain": own.go_to_landing_roll_lean_gain,
+        "go_to_settle_frames": own.go_to_settle_frames,
         "step": replace(inside.step, speed_heel_strike=own.step.speed_heel_strike),
     }
     assert replace(inside, **own_only) == own  # nothing else differs
@@ -639,3 +640,70 @@ def test_the_heel_strike_fades_with_the_steps_turn():
     walking = replace(walk_parameters(0), go_to_heel_strike=True, go_to_heel_strike_turn_fade=0.1)
     assert WalkSkill().engine_parameters(walking).step.heel_strike_turn_fade == 0.1
     assert WalkVelocitySkill().engine_parameters(walking).step.heel_strike_turn_fade == 0.0
+
+
+def _settling(x: float, y: float, heading_deg: float = 0.0) -> SimpleNamespace:
+    """A context whose localiser has an update counter and a pose the test moves."""
+    pose = SimpleNamespace(x=x, y=y, heading_deg=heading_deg)
+    return SimpleNamespace(world=SimpleNamespace(localizer=SimpleNamespace(updates=0), pose=pose))
+
+
+def _settle_cycles(skill: WalkSkill, context, params, target, cycles: int) -> list[bool]:
+    """``cycles`` cycles standing at the target, a fresh frame every third one."""
+    results = []
+    for cycle in range(cycles):
+        results.append(skill._settled(context, params, True, target))
+        if cycle % 3 == 2:
+            context.world.localizer.updates += 1
+    return results
+
+
+def test_walk_reports_arrival_only_after_fresh_frames_seen_standing_agree():
+    """Session 13: with ``go_to_settle_frames`` the walk stands at its target until that many
+    fresh localiser updates came, and reports arrival only if the mean of the later half is
+    within ``go_to_settle_distance_m`` (and the arrival's heading tolerance); otherwise it
+    walks again (``_arrived`` dropped), at most ``go_to_settle_retries`` times a target."""
+    params = replace(
+        walk_parameters(0), go_to_settle_frames=4, go_to_settle_distance_m=0.05,
+        go_to_settle_retries=1,
+    )  # fmt: skip
+    target = (1.0, 2.0, None)
+    skill = WalkSkill()
+    skill._arrived = True
+    near = _settling(1.02, 2.0)
+    results = _settle_cycles(skill, near, params, target, 16)
+    first = results.index(True)
+    assert 9 <= first <= 13 and not any(results[:first]) and all(results[first:])
+    assert skill._arrived
+    # off by 0.08 m: walk again once, then (retries used up) report arrival anyway
+    skill = WalkSkill()
+    skill._arrived = True
+    far = _settling(1.08, 2.0)
+    assert not any(_settle_cycles(skill, far, params, target, 16))
+    assert not skill._arrived
+    skill._arrived = True
+    assert _settle_cycles(skill, far, params, target, 16)[-1]
+    # a heading outside the arrival tolerance counts as off too
+    skill = WalkSkill()
+    skill._arrived = True
+    assert not any(_settle_cycles(skill, _settling(1.0, 2.0, 15.0), params, (1.0, 2.0, 0.0), 16))
+    assert not skill._arrived
+    # not standing: nothing is reported, and no frame counts
+    skill = WalkSkill()
+    assert not skill._settled(near, params, False, target)
+    assert skill._settle.frames == []
+    # no frame at all: arrival after go_to_settle_max_cycles
+    skill = WalkSkill()
+    skill._arrived = True
+    still = [skill._settled(near, params, True, target) for _ in range(60)]
+    assert still.index(True) == params.go_to_settle_max_cycles - 1
+
+
+def test_the_settle_stays_off_inside_other_skills(tmp_path):
+    """Session 13: ``go_to_settle_frames``, a key of :data:`~behaviors.walk.OFF_INSIDE_SKILLS`,
+    is on walking to targets and off inside the kick (its walk stays as tuned)."""
+    assert walk_parameters(4).go_to_settle_frames > 0
+    assert walk_parameters(4, inside_skill=True).go_to_settle_frames == 0
+    on = with_settings(["default.go_to_settle_frames=8"], tmp_path, WALK_FILE)
+    assert walk_parameters(4, on).go_to_settle_frames == 8
+    assert walk_parameters(4, on, inside_skill=True).go_to_settle_frames == 0
