@@ -289,7 +289,10 @@ class AdvanceConfig:
     goal alone, its nearest teammate 14-15 m back at its formation place (``python
     scripts/attack/match_probe.py --players 11 --seed 1``: the ball 58 s of 120 beyond x = 7.5,
     the forward falling in duels there), so a ball it lost went to a defender; an advanced
-    teammate is the nearest claim for such a loose ball and takes it over."""
+    teammate is the nearest claim for such a loose ball and takes it over. Off: with
+    ``unums`` (9, 11) seeds 1-3 (the same command, ``--set "strategy.advance.unums=[9,
+    11]"``) gave 1 goal, 57 falls against 1 goal, 43 falls (advancing wingers stepping in
+    place among the defenders were knocked over, and more players met at the ball)."""
 
     unums: tuple[int, ...] = ()
     from_x_m: float = 2.0
@@ -347,7 +350,9 @@ class StrategyConfig:
     #: active teammate, and the next of them to go fell into the same pile (``python
     #: scripts/attack/match_probe.py --players 11 --seed 1 --set
     #: "strategy.play_places={10: [-2.5, 0.0]}"``: the right team's 4, 5 and 7 fell nine
-    #: times with a teammate within 1.2 m, the ball 85 s of 120 beyond x = 7.5)
+    #: times with a teammate within 1.2 m, the ball 85 s of 120 beyond x = 7.5). Off: 1.5
+    #: cut 11 v 11 falls by a fifth (seeds 1-4 45 against 57, 5-8 47 against 63, goals 0
+    #: against 1 and 1 against 0) but 3 v 3 scored less (see config/team.yaml)
     hold_clear_m: float = 0.0
     #: the goalkeeper's unum (it guards its goal instead of attacking); None: no goalkeeper
     goalie_unum: int | None = 1
