@@ -279,6 +279,32 @@ class SupportConfig:
 
 
 @dataclass(frozen=True)
+class AdvanceConfig:
+    """Field players that move up with the ball as second attackers (``unums``, full-team
+    uniform numbers; empty: off). While the ball lies beyond ``from_x_m`` (team frame), such a
+    player's place is ``behind_m`` behind the ball (x in steps of ``step_m``, at most
+    ``max_x_m``, never behind its formation place), ``y_m`` from the middle on its own side,
+    and at least ``clear_m`` from the ball; on its way it steps in place while an opponent
+    stands within ``avoid_m`` in its way. Why: in 11 v 11 the active forward attacked the
+    goal alone, its nearest teammate 14-15 m back at its formation place (``python
+    scripts/attack/match_probe.py --players 11 --seed 1``: the ball 58 s of 120 beyond x = 7.5,
+    the forward falling in duels there), so a ball it lost went to a defender; an advanced
+    teammate is the nearest claim for such a loose ball and takes it over. Off: with
+    ``unums`` (9, 11) seeds 1-3 (the same command, ``--set "strategy.advance.unums=[9,
+    11]"``) gave 1 goal, 57 falls against 1 goal, 43 falls (advancing wingers stepping in
+    place among the defenders were knocked over, and more players met at the ball)."""
+
+    unums: tuple[int, ...] = ()
+    from_x_m: float = 2.0
+    behind_m: float = 1.0
+    y_m: float = 2.5
+    max_x_m: float = 13.0
+    clear_m: float = 1.5
+    step_m: float = 1.0
+    avoid_m: float = 1.0
+
+
+@dataclass(frozen=True)
 class KeeperConfig:
     """Where the goalkeeper stands and when it leaves its line (team frame, metres)."""
 
@@ -310,6 +336,24 @@ class StrategyConfig:
     attack: AttackConfig = field(default_factory=AttackConfig)
     keeper: KeeperConfig = field(default_factory=KeeperConfig)
     support: SupportConfig = field(default_factory=SupportConfig)
+    advance: AdvanceConfig = field(default_factory=AdvanceConfig)
+    #: places held during play instead of the formation's (unum -> x, y; empty: the
+    #: formation's); the formation place stays the beam place before a kick-off. Why: the
+    #: two centre forwards' places (the kick-off taker's, x -0.6) lie 1.2 m apart, and a
+    #: forward walking back to its place fell there against the other again and again, the
+    #: ball 5-14 m away (``python scripts/attack/match_probe.py --players 11 --seed 3``: the
+    #: right team's 10 six times)
+    play_places: dict[int, tuple[float, float]] = field(default_factory=dict)
+    #: a field player that does not go for the ball waits at least this far from it (m; its
+    #: place moved away from the ball along the line through both; 0: off). Why: defenders
+    #: holding their places at their own goal stood in the duel there and fell with the
+    #: active teammate, and the next of them to go fell into the same pile (``python
+    #: scripts/attack/match_probe.py --players 11 --seed 1 --set
+    #: "strategy.play_places={10: [-2.5, 0.0]}"``: the right team's 4, 5 and 7 fell nine
+    #: times with a teammate within 1.2 m, the ball 85 s of 120 beyond x = 7.5). Off: 1.5
+    #: cut 11 v 11 falls by a fifth (seeds 1-4 45 against 57, 5-8 47 against 63, goals 0
+    #: against 1 and 1 against 0) but 3 v 3 scored less (see config/team.yaml)
+    hold_clear_m: float = 0.0
     #: the goalkeeper's unum (it guards its goal instead of attacking); None: no goalkeeper
     goalie_unum: int | None = 1
 
@@ -557,6 +601,11 @@ class Strategy:
     # ------------------------------------------------------------------ roles
     def home(self, unum: int | None) -> tuple[float, float]:
         return self.config.formation.get(unum or 0, (-5.0, 0.0))
+
+    def play_home(self, unum: int | None) -> tuple[float, float]:
+        """The place held during play (:attr:`StrategyConfig.play_places`, else the
+        formation's)."""
+        return self.config.play_places.get(unum or 0, self.home(unum))
 
     def is_goalie(self, world) -> bool:
         return world.unum is not None and world.unum == self.config.goalie_unum
@@ -1001,27 +1050,75 @@ class Strategy:
             behavior.execute("pose", "stand")
             return
         target = self.support_point(world.ball.position)
+        self._walk_round_opponents(world, behavior, target, self.config.support.avoid_m)
+
+    def _hold_position(self, world, behavior) -> None:
+        """Walk to the place to wait at (:meth:`place`) and face the ball there (to keep seeing
+        it); an advancing player steps in place while an opponent stands in its way."""
+        if "walk" not in behavior.skill_names:
+            behavior.execute("pose", "stand")
+            return
+        target, advancing = self._waiting_place(world)
+        avoid_m = self.config.advance.avoid_m if advancing else 0.0
+        self._walk_round_opponents(world, behavior, target, avoid_m)
+
+    def _walk_round_opponents(
+        self, world, behavior, target: tuple[float, float], avoid_m: float
+    ) -> None:
+        """Walk to ``target`` facing the ball, but step in place while an opponent stands
+        within ``avoid_m`` in the way (0: never): walking into a robot knocks both over."""
         pose = world.pose
         if (
             pose is not None
             and "walk_velocity" in behavior.skill_names
             and _opponent_in_the_way(
-                (pose.x, pose.y),
-                target,
-                self._opponent_positions(world),
-                self.config.support.avoid_m,
+                (pose.x, pose.y), target, self._opponent_positions(world), avoid_m
             )
         ):
             behavior.execute("walk_velocity", 0.0, 0.0, 0.0)
             return
         _walk_facing_ball(world, behavior, target)
 
-    def _hold_position(self, world, behavior) -> None:
-        """Walk to the formation place and face the ball there (to keep seeing it)."""
-        if "walk" not in behavior.skill_names:
-            behavior.execute("pose", "stand")
-            return
-        _walk_facing_ball(world, behavior, self.home(world.unum))
+    def place(self, world) -> tuple[float, float]:
+        """Where this player waits while it does not go for the ball (:meth:`_waiting_place`)."""
+        return self._waiting_place(world)[0]
+
+    def _waiting_place(self, world) -> tuple[tuple[float, float], bool]:
+        """Where this player waits while it does not go for the ball, and whether it has
+        moved up with the ball: its place in play (:meth:`play_home`), moved up for an
+        advancing player (:class:`AdvanceConfig`), kept :attr:`StrategyConfig.hold_clear_m`
+        (an advancing player: ``advance.clear_m``) from the ball."""
+        home = self.play_home(world.unum)
+        advance = self.config.advance
+        ball = world.ball.position
+        if ball is None:
+            return home, False
+        if (
+            world.unum not in advance.unums
+            or ball[0] < advance.from_x_m
+            or opponents_restart(world.play_mode, world.side)
+        ):
+            return _clear_of(home, ball, self.config.hold_clear_m), False
+        x = min(advance.max_x_m, ball[0] - advance.behind_m)
+        if advance.step_m > 0.0:
+            x = advance.step_m * math.floor(x / advance.step_m)
+        x = max(home[0], x)
+        y = math.copysign(advance.y_m, home[1]) if home[1] else 0.0
+        return _clear_of((x, y), ball, advance.clear_m), True
+
+
+def _clear_of(
+    place: tuple[float, float], ball: tuple[float, float], clear_m: float
+) -> tuple[float, float]:
+    """``place``, or where the line from the ball through it is ``clear_m`` from the ball
+    when it lies closer (a place on the ball: ``clear_m`` behind it; 0: ``place``)."""
+    gap = math.dist(place, ball)
+    if clear_m <= 0.0 or gap >= clear_m:
+        return place
+    if gap < 1e-6:
+        return ball[0] - clear_m, ball[1]
+    scale = clear_m / gap
+    return ball[0] + (place[0] - ball[0]) * scale, ball[1] + (place[1] - ball[1]) * scale
 
 
 def _in_front_of_goal_mouth(ball: tuple[float, float], attack: AttackConfig) -> bool:

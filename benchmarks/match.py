@@ -43,7 +43,9 @@ def small_team(name: str, players: int, base: TeamConfig | None = None) -> TeamC
     """A team of ``players`` taking the first places of :data:`LINEUP_ORDER` of ``base``.
 
     The chosen places keep their full-team order (the goalkeeper stays unum 1 whenever it
-    plays), their formation places and robot types.
+    plays), their formation places and robot types; advancing players
+    (``strategy.advance.unums``) and places in play (``strategy.play_places``) move to the new
+    numbers, the absent players' dropped.
     """
     base = base or TeamConfig(name)
     if not 1 <= players <= len(LINEUP_ORDER):
@@ -52,7 +54,21 @@ def small_team(name: str, players: int, base: TeamConfig | None = None) -> TeamC
     types = base.robot_types if len(base.robot_types) == 11 else DEFAULT_ROBOT_TYPES
     formation = {new: base.strategy.formation[old] for new, old in enumerate(places, start=1)}
     goalie = 1 if 1 in places else None
-    strategy = replace(base.strategy, formation=formation, goalie_unum=goalie)
+    renumber = {old: new for new, old in enumerate(places, start=1)}
+    advance = replace(
+        base.strategy.advance,
+        unums=tuple(renumber[u] for u in base.strategy.advance.unums if u in renumber),
+    )
+    play_places = {
+        renumber[old]: place for old, place in base.strategy.play_places.items() if old in renumber
+    }
+    strategy = replace(
+        base.strategy,
+        formation=formation,
+        goalie_unum=goalie,
+        advance=advance,
+        play_places=play_places,
+    )
     return replace(
         base,
         name=name,

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from dataclasses import replace
 from types import SimpleNamespace
 
 import pytest
@@ -13,6 +14,7 @@ from agent.attack_keeper import detour_point, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from agent.strategy import (
     SEARCH_TURN_DEG_S,
+    AdvanceConfig,
     AttackConfig,
     HoldWatch,
     KeeperConfig,
@@ -517,6 +519,71 @@ def test_a_supporter_steps_in_place_while_an_opponent_stands_in_its_way_if_told_
     plain = Strategy(StrategyConfig(support=SupportConfig(ahead_m=2.0, side_m=1.5, avoid_m=0.0)))
     plain.decide(world((6.0, 2.0), (-2.0, 0.0, 0.0), heard=heard, opponents=[in_way]), behavior)
     assert behavior.calls[-1][0] == "walk"
+
+
+def test_an_advancing_winger_waits_behind_the_ball_clear_of_it_and_only_if_told_so():
+    behavior = RecordingBehavior("walk", "walk_velocity", "dribble")
+    advance = AdvanceConfig(unums=(9, 11), from_x_m=2.0, behind_m=1.0, y_m=2.5)
+    strategy = Strategy(StrategyConfig(advance=advance))
+    heard = [said(10, 0.5)]  # teammate 10 goes for the ball
+    # ball at (9.4, 0.3): winger 9 (home -3, -4.5) waits at x 8 (9.4 - 1 in 1 m steps), y -2.5
+    strategy.decide(world((9.4, 0.3), (0.0, -4.0, 0.0), heard=heard), behavior)
+    assert behavior.calls[-1][:3] == ("walk", 8.0, -2.5)
+    # a ball in its lane: its place keeps clear_m from the ball
+    x, y = strategy.place(world((9.4, -2.4), (0.0, -4.0, 0.0), heard=heard))
+    assert math.dist((x, y), (9.4, -2.4)) == pytest.approx(1.5)
+    # short of from_x_m, for a player not listed, or switched off: the formation place
+    assert strategy.place(world((1.0, 0.3), (0.0, -4.0, 0.0))) == strategy.home(9)
+    assert strategy.place(world((9.4, 0.3), (0.0, -4.0, 0.0), unum=7)) == strategy.home(7)
+    assert Strategy().place(world((9.4, 0.3), (0.0, -4.0, 0.0))) == Strategy().home(9)
+    # an opponent in its way: it steps in place
+    in_way = SimpleNamespace(unum=3, position=(0.7, -3.8))
+    strategy.decide(world((9.4, 0.3), (0.0, -4.0, 0.0), heard=heard, opponents=[in_way]), behavior)
+    assert behavior.calls[-1] == ("walk_velocity", 0.0, 0.0, 0.0)
+
+
+def test_a_place_in_play_is_held_instead_of_the_formation_place_which_stays_the_beam_place():
+    behavior = RecordingBehavior("walk", "dribble")
+    strategy = Strategy(StrategyConfig(play_places={10: (-2.5, 0.0)}))
+    heard = [said(7, 0.5)]  # teammate 7 goes for the ball
+    strategy.decide(world((-8.0, 3.0), (0.0, 0.0, 0.0), heard=heard, unum=10), behavior)
+    assert behavior.calls[-1][:3] == ("walk", -2.5, 0.0)
+    beam = strategy.decide(
+        world((0.0, 0.0), (0.0, 0.0, 0.0), play_mode="BeforeKickOff", unum=10), behavior
+    ).beam
+    assert beam == (*strategy.home(10), 0.0) and strategy.home(10) == (-0.6, 0.0)
+    # a player without a place in play holds its formation place
+    strategy.decide(world((-8.0, 3.0), (0.0, 0.0, 0.0), heard=heard, unum=9), behavior)
+    assert behavior.calls[-1][1:3] == strategy.home(9)
+
+
+def test_a_player_holding_its_place_keeps_clear_of_the_ball_if_told_so():
+    behavior = RecordingBehavior("walk", "dribble")
+    heard = [said(7, 0.3)]  # teammate 7 goes for the ball
+    home = Strategy().home(4)  # (-11.5, -1.5)
+    ball = (home[0] + 0.5, home[1])  # a duel half a metre in front of the place
+    Strategy().decide(world(ball, (-12.0, -1.0, 0.0), heard=heard, unum=4), behavior)
+    assert behavior.calls[-1][1:3] == home  # off: it walks into the duel
+    strategy = Strategy(StrategyConfig(hold_clear_m=1.5))
+    strategy.decide(world(ball, (-12.0, -1.0, 0.0), heard=heard, unum=4), behavior)
+    assert behavior.calls[-1][1:3] == pytest.approx((ball[0] - 1.5, home[1]))
+    # a place farther than that from the ball stays where it is
+    far = (home[0] + 3.0, home[1])
+    strategy.decide(world(far, (-12.0, -1.0, 0.0), heard=heard, unum=4), behavior)
+    assert behavior.calls[-1][1:3] == home
+
+
+def test_a_smaller_team_keeps_the_advancing_players_it_fields_under_their_new_numbers():
+    from agent.team import TeamConfig
+    from benchmarks.match import small_team
+
+    base = TeamConfig("Us")
+    base = replace(base, strategy=replace(base.strategy, advance=AdvanceConfig(unums=(9, 11))))
+    assert small_team("Us", 3, base).strategy.advance.unums == ()  # unums 1, 7, 10
+    assert small_team("Us", 5, base).strategy.advance.unums == (3, 5)  # 1, 7, 9, 10, 11
+    assert small_team("Us", 11, base).strategy.advance.unums == (9, 11)
+    base = replace(base, strategy=replace(base.strategy, play_places={10: (-2.5, 0.0)}))
+    assert small_team("Us", 3, base).strategy.play_places == {3: (-2.5, 0.0)}
 
 
 def test_a_ball_held_at_the_feet_for_seconds_makes_the_player_step_back():

@@ -8,8 +8,8 @@ repeat the benchmark's for a seed on one machine.
 Run: ``python scripts/attack/match_probe.py --seed S [--duration 120] [--set KEY=VALUE ...]``;
 prints the score, per team the seconds its active player spent per skill, the seconds with the
 ball contested (players of both teams within ``CONTEST_M`` of it), ball-lost seconds, and each
-fall: time, team, unum, distance to the ball, nearest opponent, nearest teammate, skill
-before the fall.
+fall: time, team, unum, distance to the ball, nearest opponent and nearest teammate (distance
+and name), skill before the fall.
 """
 
 from __future__ import annotations
@@ -36,16 +36,16 @@ CONTEST_M = 0.7
 CYCLE_S = 0.02
 
 
-def _nearest(places: dict, key: tuple, same_team: bool) -> float:
+def _nearest(places: dict, key: tuple, same_team: bool) -> tuple[float, str]:
     """Distance (m) from the robot ``key`` to the nearest other robot of its own team
-    (``same_team``) or of the other (99 with none)."""
+    (``same_team``) or of the other, and that robot's name (99 and "-" with none)."""
     return min(
         (
-            math.dist(place, places[key])
+            (math.dist(place, places[key]), f"{other[0]}{other[1]}")
             for other, place in places.items()
             if other != key and (other[0] == key[0]) == same_team
         ),
-        default=99.0,
+        default=(99.0, "-"),
     )
 
 
@@ -156,8 +156,8 @@ def main() -> None:
     print("  ball x zone: " + ", ".join(f"{k:+d} {v:.0f}" for k, v in sorted(zones.items())))
     for t, key, dist, skill, opp, mate in falls:
         print(
-            f"  fall {t:6.1f} {key[0]}{key[1]} ball {dist:4.2f} opp {opp:4.2f} "
-            f"mate {mate:4.2f} after {skill}"
+            f"  fall {t:6.1f} {key[0]}{key[1]} ball {dist:4.2f} opp {opp[0]:4.2f} {opp[1]} "
+            f"mate {mate[0]:4.2f} {mate[1]} after {skill}"
         )
 
 
