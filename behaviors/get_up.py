@@ -33,6 +33,9 @@ Sequences are looked up per robot type first (``get_up_front_type3``), then by t
 After a back get-up whose torso never rose, a type's retry version plays where it has one
 (``get_up_back_retry_type3``, :data:`RETRY_SUFFIX`): some sit-ups work only where a robot's
 parts collide with each other (our server) or only where they do not (the real one).
+After any failed front attempt, likewise (``get_up_front_retry_type3``: a robot that sagged
+onto its face from its knees rises with its hands kept planted instead of vaulting over the
+head).
 """
 
 from __future__ import annotations
@@ -85,7 +88,8 @@ RETRY_AT_ONCE_MAX_GYRO_DEG_S: float | None = None
 #: The sequence that turns a robot lying on its left side onto its back (mirrored for the right).
 ROLL_FROM_LEFT = "roll_left_to_back"
 #: After a failed get-up attempt the next one plays ``get_up_<side>`` + RETRY_SUFFIX where the
-#: robot type has one (``get_up_back_retry_type3``), else the same sequence again. Why: the
+#: robot type has one (``get_up_back_retry_type3``, ``get_up_front_retry_type3``), else the
+#: same sequence again. Why: the
 #: agent cannot know whether the server collides a robot's parts with each other (ours does,
 #: the real rcssserver3d does not), and some sit-ups stand robots up under one rule only; a
 #: sit-up that failed is followed by one that works under the other.
@@ -546,7 +550,9 @@ class GetUpSkill(Skill):
         has failed and the type has one, else the type's own or the common one."""
         base = f"get_up_{side}"
         retry = f"{base}{RETRY_SUFFIX}"
-        never_up = _never_up_tilt_deg(robot_type) is None or self.last_never_up
+        # a front retry version plays after any failed attempt, a back one only after a
+        # sit-up that never rose (RETRY_NEVER_UP_TILT_DEG)
+        never_up = side == "front" or _never_up_tilt_deg(robot_type) is None or self.last_never_up
         if self.get_up_attempts > 0 and never_up and f"{retry}_type{robot_type}" in self.sequences:
             base = retry
         return sequence_for(base, robot_type, self.sequences)

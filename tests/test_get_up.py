@@ -596,7 +596,10 @@ def _front_fold(monkeypatch, robot_type: int, knee_deg: float) -> None:
 def test_a_late_retry_that_has_risen_counts_before_its_last_hold(monkeypatch):
     """Benchmark fall type 3 seed 3504 (front, retried from the back at 1.6 s): the legs are
     at the stand at 4 s, when the last frame's full time has not passed yet; reported once
-    the legs are near the stand (EARLY_STAND_DEG) it counts, waiting for the hold it does not."""
+    the legs are near the stand (EARLY_STAND_DEG) it counts, waiting for the hold it does not.
+    Played without type 3's front retry version (with it this fall's retry rises from the
+    front and stands within 4 s either way: 3.66 / 3.80 s)."""
+    _package_without(monkeypatch, "get_up_front_retry_type3")
     assert run_trial(3, "front", 3504).succeeded
     monkeypatch.setattr(get_up_module, "EARLY_STAND_DEG", None)
     assert not run_trial(3, "front", 3504).succeeded
@@ -660,9 +663,34 @@ def test_a_retry_version_plays_only_after_an_attempt_that_never_rose():
     assert skill._get_up_sequence("back", 0).name == "get_up_back_retry_type0"
     assert skill._get_up_sequence("back", 2).name == "get_up_back_retry_type2"
     assert skill._get_up_sequence("back", 4).name == "get_up_back_type4"
-    assert skill._get_up_sequence("front", 3).name == "get_up_front_type3"
+    assert skill._get_up_sequence("front", 3).name == "get_up_front_retry_type3"
     skill.reset()
     assert skill._get_up_sequence("back", 3).name == "get_up_back_type3"
+
+
+def test_a_front_retry_version_plays_after_any_failed_attempt():
+    """``get_up_front_retry_type3`` replaces type 3's front get-up after any failed attempt
+    (no never-up condition: a front attempt that fails has come up and tipped over); types
+    without one play their own front get-up again."""
+    skill = GetUpSkill()
+    assert skill._get_up_sequence("front", 3).name == "get_up_front_type3"
+    skill.get_up_attempts = 1
+    assert not skill.last_never_up
+    assert skill._get_up_sequence("front", 3).name == "get_up_front_retry_type3"
+    assert skill._get_up_sequence("front", 1).name == "get_up_front_type1"
+    assert skill._get_up_sequence("front", 0).name == "get_up_front"
+    retry = skill._get_up_sequence("front", 3).frames[0].joints
+    assert retry["laj1"] == retry["raj1"] == -40.0  # the hands stay planted
+
+
+def test_type3_front_retry_with_the_hands_planted_brings_a_benchmark_fall_up(monkeypatch):
+    """Benchmark fall type 3 seed 3512 (``--seed 500``, ends on the front): the first attempt
+    sags onto the face from its knees; the retry with the arms kept at -40 rises from the
+    front again and stands within 4 s, the common first frame (arms overhead) vaults it over
+    the head onto the back and it stays down."""
+    assert run_trial(3, "front", 3512).succeeded
+    _package_without(monkeypatch, "get_up_front_retry_type3")
+    assert not run_trial(3, "front", 3512).succeeded
 
 
 def test_type3_back_retry_stands_without_self_collision(monkeypatch):

@@ -32,3 +32,14 @@ def test_a_screen_variant_mixes_knobs_and_sequence_edits():
     assert edited["get_up_back"]["frames"][5]["duration"] == 0.4
     assert entries["get_up_back"]["frames"][5]["duration"] == 0.5
     assert variant_knobs("base") == {}
+
+
+def test_a_saved_trial_list_reads_back_grouped_by_its_benchmark_seed(tmp_path):
+    from scripts.get_up.screen_sequences import benchmark_seed, read_trials
+
+    path = tmp_path / "front.txt"
+    path.write_text("3:front:3012\n0:back:512\n4:front:14015\n")
+    trials = read_trials(path)
+    assert trials == [(3, "front", 3012), (0, "back", 512), (4, "front", 14015)]
+    # trial k of type T at benchmark seed S has seed S + 1000 T + k
+    assert [benchmark_seed(t) for t in trials] == [0, 500, 10000]

@@ -29,6 +29,11 @@ A variant is ``base`` or edits separated by ``;``:
 ``--time-limit`` plays every get-up with another limit than the benchmark's 4 s (how many
 trials a variant stands within 5 s says whether it only moves the late ones).
 
+``--save-trials FILE`` writes the trials played (those left after ``--lying-on``) and
+``--trials-file FILE`` plays only the listed ones, grouped by the benchmark seed each belongs
+to: the falls that end elsewhere are not simulated again (the 114 front trials of seeds 0-5000
+are 114 falls instead of 700; session 14 screened its front variants on such lists).
+
 Session 12, shorter back get-ups so that late retries fit into the 4 s (every back sequence,
 ``--types 0,1,2,3,4 --seed 0 --seed 500``, base 181 of 200): squat frame 0.3 s (was 0.4) 176,
 rise 0.4 s (was 0.5) 181 with no trial changed (the early stand check already ends the rise
@@ -184,6 +189,21 @@ def _play_forked(
     return pickle.loads(data)
 
 
+def read_trials(path: Path) -> list[tuple[int, str, int]]:
+    """Trials ``TYPE:DIRECTION:SEED``, one per line (``--save-trials``' format)."""
+    out = []
+    for line in path.read_text().split():
+        robot_type, direction, seed = line.split(":")
+        out.append((int(robot_type), direction, int(seed)))
+    return out
+
+
+def benchmark_seed(spec: tuple[int, str, int]) -> int:
+    """The ``--seed`` of the benchmark run a trial belongs to (a multiple of 500: trial k of
+    type T has seed ``S + 1000 * T + k``, k < 500)."""
+    return (spec[2] - 1000 * spec[0]) // 500 * 500
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seed", type=int, action="append")
@@ -198,6 +218,16 @@ def main() -> None:
         "--check", action="store_true", help="also run the base through run_trial and compare"
     )
     parser.add_argument("--time-limit", type=float, default=4.0)
+    parser.add_argument(
+        "--trials-file",
+        type=Path,
+        help="play only the trials listed in this file (TYPE:DIRECTION:SEED per line, as "
+        "--save-trials writes them) instead of --seed: the falls that end elsewhere are skipped "
+        "without being simulated",
+    )
+    parser.add_argument(
+        "--save-trials", type=Path, help="write the trials played (after --lying-on) to this file"
+    )
     parser.add_argument("--show-changes", action="store_true", help="trials that differ from base")
     parser.add_argument(
         "--show-failures", action="store_true", help="the trials every variant leaves down"
@@ -212,16 +242,26 @@ def main() -> None:
     totals = dict.fromkeys(variants, 0)
     changes: dict[str, list[str]] = {v: [] for v in variants}
     failures: dict[str, list[str]] = {v: [] for v in variants}
-    for seed in args.seed or [0]:
+    listed = None if args.trials_file is None else read_trials(args.trials_file)
+    saved: list[str] = []
+    seeds = args.seed or [0]
+    if listed is not None:
+        seeds = sorted({benchmark_seed(spec) for spec in listed})
+    for seed in seeds:
         ups = dict.fromkeys(variants, 0)
         played = 0
-        specs = trial_specs(types, args.trials_per_type, seed, args.directions.split(","))
+        specs = (
+            [spec for spec in listed if benchmark_seed(spec) == seed]
+            if listed is not None
+            else trial_specs(types, args.trials_per_type, seed, args.directions.split(","))
+        )
         for spec in specs:
             session, driver, lying_on = fall(*spec)
             try:
                 if args.lying_on and lying_on not in args.lying_on.split(","):
                     continue
                 played += 1
+                saved.append(f"{spec[0]}:{spec[1]}:{spec[2]}")
                 base = _play_forked(
                     driver, spec, lying_on, base_sequences, time_limit=args.time_limit
                 ).succeeded
@@ -256,6 +296,8 @@ def main() -> None:
             f"seed {seed} ({played} trials): " + "  ".join(f"{ups[v]}" for v in variants),
             flush=True,
         )
+    if args.save_trials is not None:
+        args.save_trials.write_text("".join(f"{trial}\n" for trial in saved))
     for variant in variants:
         line = f"{totals[variant]:4d}  {variant}"
         if args.show_changes and variant != "base":
