@@ -173,7 +173,8 @@ class KickMotion:
         swing's end to the start of the last frame (the return to the stand)."""
         frames = self.sequence(strength).frames
         swing_end = sum(frames[i].total for i in range(max(self.swing_frames) + 1))
-        return swing_end, sum(frame.total for frame in frames[:-1])
+        early = self.catch.early_s if self.catch is not None else 0.0
+        return swing_end - early, sum(frame.total for frame in frames[:-1])
 
     def contact_time(self, strength: float) -> float:
         """Seconds from the first cycle to the start of the swing (the foot then meets the

@@ -52,6 +52,7 @@ def _up_rolled_right(degrees: float) -> np.ndarray:
         ({"catch_s": 0.0}, "catch_s"),
         ({"width_m": 0.3}, "width_m"),
         ({"press_m": -0.01}, "press_m"),
+        ({"early_s": -0.1}, "early_s"),
         ({"wdth_m": 0.2}, "unknown field"),
         ({"hold_s": "long"}, "expected a number"),
     ],
