@@ -38,6 +38,7 @@ from typing import Any
 
 from behaviors.joint_control import JointCommands
 from behaviors.keyframes import KeyframePlayer, KeyframeSequence, mirrored, parse_sequences
+from behaviors.kick_recovery import CatchParams, LandingCatch, parse_catch
 from behaviors.poses import DATA_DIR, PoseError, check_fields, check_number, read_yaml_mapping
 from behaviors.skill import Skill, SkillContext
 from world.perception import ForceResistance
@@ -121,6 +122,9 @@ class KickMotion:
     #: slow swings fell half the time (session 11: 20 / 21 falls of 40 kicks asked for 1.5 /
     #: 2 m), the full-speed swing with the ball further ahead far less (session 12).
     gap_distances: tuple[tuple[float, float], ...] = ()
+    #: the landing catch after the swing (``behaviors/kick_recovery.py``); None: off, the
+    #: keyframed landing plays whatever the torso does
+    catch: CatchParams | None = None
 
     def strength_for(self, distance_m: float) -> float:
         """The strength (0..1) whose measured distance is ``distance_m``, interpolated linearly
@@ -164,6 +168,14 @@ class KickMotion:
         sequence = replace(self.frames, frames=frames)
         return mirrored(sequence) if mirror else sequence
 
+    def catch_window(self, strength: float) -> tuple[float, float]:
+        """Seconds from the first cycle between which the landing catch may start: from the
+        swing's end to the start of the last frame (the return to the stand)."""
+        frames = self.sequence(strength).frames
+        swing_end = sum(frames[i].total for i in range(max(self.swing_frames) + 1))
+        early = self.catch.early_s if self.catch is not None else 0.0
+        return swing_end - early, sum(frame.total for frame in frames[:-1])
+
     def contact_time(self, strength: float) -> float:
         """Seconds from the first cycle to the start of the swing (the foot then meets the
         ball within the swing's first part)."""
@@ -201,11 +213,19 @@ def parse_kicks(data: Mapping[str, Any], source: str) -> dict[str, KickMotion]:
             ball_side_m=check_number(entry.get("ball_side_m", 0.0), f"{where}.ball_side_m"),
             distances=_parse_distances(entry.get("distances", []), f"{where}.distances"),
             gap_distances=_parse_gaps(entry.get("gap_distances", []), f"{where}.gap_distances"),
+            catch=parse_catch(entry["catch"], f"{where}.catch") if "catch" in entry else None,
         )
     return kicks
 
 
-_KICK_OPTIONAL = {"description", "ball_gap_m", "ball_side_m", "distances", "gap_distances"}
+_KICK_OPTIONAL = {
+    "description",
+    "ball_gap_m",
+    "ball_side_m",
+    "distances",
+    "gap_distances",
+    "catch",
+}
 
 
 def _parse_pairs(data: Any, where: str, columns: str) -> tuple[tuple[float, float], ...]:
@@ -327,6 +347,9 @@ class KickSkill(Skill):
         self._player: KeyframePlayer | None = None
         self._done = False
         self._balance: _OneLegBalance | None = None
+        self._catch: LandingCatch | None = None
+        self._catch_window = (0.0, 0.0)
+        self._support_plan: dict[str, float] = {}
         #: the one-leg balance's centre-of-pressure gain (:data:`COP_GAIN`; trials set their own)
         self.cop_gain = cop_gain
         #: the kick motions to choose from (None: the packaged ones); searches set their own
@@ -336,6 +359,7 @@ class KickSkill(Skill):
         self._player = None
         self._done = False
         self._balance = None
+        self._catch = None
 
     def validate(
         self, foot: str, strength: float = 1.0, aligned: bool = False, long: bool = False
@@ -359,6 +383,11 @@ class KickSkill(Skill):
             sequence = motion.sequence(strength, mirror=foot == "right")
             self._player = KeyframePlayer(sequence, robot.robot_type)
             self._balance = _OneLegBalance(sequence, foot == "right")
+            self._catch = None
+            if motion.catch is not None:
+                self._catch = LandingCatch(motion.catch, robot.robot_type, foot == "right")
+                self._catch_window = motion.catch_window(strength)
+                self._support_plan = _support_plan(sequence, foot)
             self._done = False
         elapsed = self._player.elapsed
         self._done = self._player.step(context.commands, robot.joints_deg)
@@ -371,7 +400,29 @@ class KickSkill(Skill):
         self._balance.correct(
             context.commands, elapsed, robot.roll_deg, roll_rate, cop, self.cop_gain
         )
+        catch = self._catch
+        low, high = self._catch_window
+        starts = catch is not None and not catch.active and low <= elapsed < high
+        if starts and catch.triggered(robot.roll_deg, roll_rate):  # type: ignore[union-attr]
+            catch.start(robot.joints_deg, robot.up, robot.roll_deg, self._support_plan)  # type: ignore[union-attr]
+        if catch is not None and catch.active and catch.params.hand_back and elapsed >= high:
+            catch.active = False  # the kick's own return to the stand from here on
+            self._catch = None
+        if catch is not None and catch.active:
+            frp = robot.foot_pressure.get("rf" if foot == "right" else "lf")
+            force = 0.0 if frp is None else float(frp.force[2])
+            self._done = catch.step(context.commands, robot.joints_deg, robot.up, force)
         return self._done
+
+
+def _support_plan(sequence: KeyframeSequence, foot: str) -> dict[str, float]:
+    """The support leg's targets at the end of the landing frame (the last before the return
+    to the stand): where the landing catch expects the support leg while the foot comes down."""
+    targets: dict[str, float] = {}
+    for frame in sequence.frames[:-1]:
+        targets.update(frame.joints)
+    prefix = "llj" if foot == "right" else "rlj"
+    return {name: value for name, value in targets.items() if name.startswith(prefix)}
 
 
 class _OneLegBalance:
