@@ -288,10 +288,11 @@ def test_a_pitched_back_torso_holds_the_restart_to_a_backward_step():
     """Session 8: type 2 fell backwards walking off towards a target with its torso pitched
     back (its landing correction's backward steps fought the forward command), so while it
     pitches back more than ``go_to_pitch_back_deg`` the forward command is at most a backward
-    step, until the pitch is back within ``go_to_pitch_back_release_deg``; off (inf) for the
-    other types by default, so their walk is unchanged."""
-    assert walk_parameters(2).go_to_pitch_back_deg < 10.0
-    assert walk_parameters(0).go_to_pitch_back_deg == math.inf
+    step, until the pitch is back within ``go_to_pitch_back_release_deg``. Session 14: on for
+    every type walking to targets (type 0 fell the same way), off inside other skills."""
+    for robot_type in range(5):
+        assert walk_parameters(robot_type).go_to_pitch_back_deg < 10.0
+        assert walk_parameters(robot_type, inside_skill=True).go_to_pitch_back_deg == math.inf
     skill = WalkSkill()
     engine = WalkEngine(2, walk_parameters(2))
     on = engine.params.go_to_pitch_back_deg
@@ -305,7 +306,7 @@ def test_a_pitched_back_torso_holds_the_restart_to_a_backward_step():
     skill._pitch_guarded(engine, -on - 0.5, 0.3)
     skill.reset()
     assert skill._pitch_guarded(engine, -release - 0.5, 0.3) == 0.3
-    off = WalkEngine(0, walk_parameters(0))
+    off = WalkEngine(0, walk_parameters(0, inside_skill=True))
     assert WalkSkill()._pitch_guarded(off, -40.0, 0.3) == 0.3
 
 
