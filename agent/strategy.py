@@ -354,8 +354,29 @@ class StrategyConfig:
     #: cut 11 v 11 falls by a fifth (seeds 1-4 45 against 57, 5-8 47 against 63, goals 0
     #: against 1 and 1 against 0) but 3 v 3 scored less (see config/team.yaml)
     hold_clear_m: float = 0.0
+    #: ... but only in a team of at least this many players (the places of
+    #: :attr:`formation`; 0: any team). Why: keeping clear cut the falls of 11 v 11 but cost
+    #: 3 v 3 goals (see :attr:`hold_clear_m`), and a smaller team's formation lists only the
+    #: places it fields (``benchmarks.match.small_team``), so a team knows its size from it
+    hold_clear_min_players: int = 0
     #: the goalkeeper's unum (it guards its goal instead of attacking); None: no goalkeeper
     goalie_unum: int | None = 1
+
+    def __post_init__(self) -> None:
+        if self.hold_clear_m < 0.0:
+            raise ValueError(f"hold_clear_m must be >= 0, got {self.hold_clear_m}")
+        if not 0 <= self.hold_clear_min_players <= 11:
+            raise ValueError(
+                f"hold_clear_min_players must be 0-11, got {self.hold_clear_min_players}"
+            )
+
+    @property
+    def hold_clear(self) -> float:
+        """The clearance (m) a waiting field player keeps from the ball in this team
+        (:attr:`hold_clear_m`, or 0 in a team smaller than :attr:`hold_clear_min_players`)."""
+        if len(self.formation) < self.hold_clear_min_players:
+            return 0.0
+        return self.hold_clear_m
 
     @classmethod
     def from_yaml(cls, path: str | Path) -> StrategyConfig:
@@ -1086,7 +1107,7 @@ class Strategy:
     def _waiting_place(self, world) -> tuple[tuple[float, float], bool]:
         """Where this player waits while it does not go for the ball, and whether it has
         moved up with the ball: its place in play (:meth:`play_home`), moved up for an
-        advancing player (:class:`AdvanceConfig`), kept :attr:`StrategyConfig.hold_clear_m`
+        advancing player (:class:`AdvanceConfig`), kept :attr:`StrategyConfig.hold_clear`
         (an advancing player: ``advance.clear_m``) from the ball."""
         home = self.play_home(world.unum)
         advance = self.config.advance
@@ -1098,7 +1119,7 @@ class Strategy:
             or ball[0] < advance.from_x_m
             or opponents_restart(world.play_mode, world.side)
         ):
-            return _clear_of(home, ball, self.config.hold_clear_m), False
+            return _clear_of(home, ball, self.config.hold_clear), False
         x = min(advance.max_x_m, ball[0] - advance.behind_m)
         if advance.step_m > 0.0:
             x = advance.step_m * math.floor(x / advance.step_m)

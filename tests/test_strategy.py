@@ -573,6 +573,34 @@ def test_a_player_holding_its_place_keeps_clear_of_the_ball_if_told_so():
     assert behavior.calls[-1][1:3] == home
 
 
+def test_keeping_clear_of_the_ball_applies_only_to_a_team_of_the_size_asked_for():
+    from agent.team import TeamConfig
+    from benchmarks.match import small_team
+    from world.yaml_config import ConfigError, config_from_mapping
+
+    base = TeamConfig("Us", strategy=StrategyConfig(hold_clear_m=1.5, hold_clear_min_players=11))
+    assert base.strategy.hold_clear == 1.5
+    assert small_team("Us", 11, base).strategy.hold_clear == 1.5
+    assert small_team("Us", 10, base).strategy.hold_clear == 0.0
+    assert small_team("Us", 3, base).strategy.hold_clear == 0.0
+    # a 3 v 3 player holding its place walks into the duel as with the option off
+    behavior = RecordingBehavior("walk", "dribble")
+    heard = [said(3, 0.3)]  # teammate 3 (the forward) goes for the ball
+    small = Strategy(small_team("Us", 3, base).strategy)
+    home = small.home(2)
+    ball = (home[0] + 0.5, home[1])
+    small.decide(world(ball, (home[0] - 0.5, home[1], 0.0), heard=heard, unum=2), behavior)
+    assert behavior.calls[-1][1:3] == home
+    full = Strategy(base.strategy)
+    home = full.home(7)
+    ball = (home[0] + 0.5, home[1])
+    full.decide(world(ball, (home[0] - 0.5, home[1], 0.0), heard=heard, unum=7), behavior)
+    assert behavior.calls[-1][1:3] == pytest.approx((ball[0] - 1.5, home[1]))
+    for bad in ({"hold_clear_min_players": 12}, {"hold_clear_m": -1.0}):
+        with pytest.raises(ConfigError, match=next(iter(bad))):
+            config_from_mapping(StrategyConfig, bad)
+
+
 def test_a_smaller_team_keeps_the_advancing_players_it_fields_under_their_new_numbers():
     from agent.team import TeamConfig
     from benchmarks.match import small_team
