@@ -31,7 +31,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from agent.attack_keeper import aim_point, contested, detour_point, open_side
+from agent.attack_keeper import aim_point, contested, detour_point, free_heading, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from behaviors.basic_kick import expected_ball_ego
 from behaviors.kick import FEET, kick_motion
@@ -195,6 +195,14 @@ class AttackConfig:
     dodge_ahead_m: float = 1.8
     dodge_across_m: float = 0.7
     dodge_deg: float = 35.0
+    #: dribble into free space instead of the dodge (0 deg: off, the dodge): an opponent
+    #: within ``free_space_clear_m`` of the path ``free_space_ahead_m`` ahead of the ball
+    #: turns the dribble by the fewest ``free_space_step_deg`` steps, at most
+    #: ``free_space_deg``, that make the path free (:func:`agent.attack_keeper.free_heading`)
+    free_space_deg: float = 0.0
+    free_space_step_deg: float = 15.0
+    free_space_ahead_m: float = 2.0
+    free_space_clear_m: float = 0.8
     #: the ball within ``hold_guard_m`` of the torso for ``hold_guard_s`` (with gaps shorter
     #: than the referee's 0.5 s reset) makes the player step back for ``back_off_s``: the
     #: referee calls holding at 5 s within 0.12 m, and pushing the ball against an opponent
@@ -243,6 +251,14 @@ class AttackConfig:
     #: at ``sprint_max_turn_deg_s``: turning 20-30 deg/s at full speed tripped the robot)
     sprint_turn_gain: float = 1.0
     sprint_max_turn_deg_s: float = 10.0
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.free_space_deg <= 180.0:
+            raise ValueError(f"free_space_deg must be 0-180, got {self.free_space_deg}")
+        if self.free_space_deg > 0.0 and not 0.0 < self.free_space_step_deg <= 90.0:
+            raise ValueError(
+                f"free_space_step_deg must be in (0, 90], got {self.free_space_step_deg}"
+            )
 
 
 @dataclass(frozen=True)
@@ -799,7 +815,17 @@ class Strategy:
                     # starts from its first step, under a robot that is in its last one
                     self._gait = self._dribble_kind((bx, by))
                 heading = math.degrees(to_goal)
-                if attack.detour_clear_m <= 0.0:
+                if attack.free_space_deg > 0.0:
+                    heading = free_heading(
+                        (bx, by),
+                        heading,
+                        self._opponent_positions(world),
+                        attack.free_space_deg,
+                        attack.free_space_step_deg,
+                        attack.free_space_ahead_m,
+                        attack.free_space_clear_m,
+                    )
+                elif attack.detour_clear_m <= 0.0:
                     heading = dodge_heading(
                         (bx, by), heading, self._opponent_positions(world), attack
                     )

@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from agent.attack_keeper import detour_point, open_side
+from agent.attack_keeper import detour_point, free_heading, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from agent.strategy import (
     SEARCH_TURN_DEG_S,
@@ -261,6 +261,37 @@ def test_a_keeper_in_the_way_is_passed_beside_it_on_its_open_side():
     strategy.decide(world((8.0, 0.0), (7.75, 0.17, -30.0), opponents=[rival]), behavior)
     expected = math.degrees(math.atan2(-0.7, 1.0))
     assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(expected))
+
+
+def test_the_dribble_turns_into_free_space_by_the_fewest_steps_if_told_so():
+    def free(ball, opponents, heading=0.0):
+        return free_heading(ball, heading, opponents, 60.0, 15.0, 2.0, 0.8)
+
+    assert free((0.0, 0.0), []) == 0.0
+    assert free((0.0, 0.0), [(-0.5, 0.1), (3.0, 0.0)]) == 0.0  # behind the ball, beyond the path
+    # 1 m straight ahead: 15-45 deg pass it within 0.8 m, 60 deg does not
+    assert abs(free((0.0, 0.0), [(1.0, 0.0)])) == 60.0
+    # a little to the left of the path: away from it to the right, 30 deg is enough
+    assert free((0.0, 0.0), [(1.2, 0.3)]) == -30.0
+    # ... but with a second one there, left round the first
+    assert free((0.0, 0.0), [(1.2, 0.3), (1.2, -1.2)]) == 60.0
+    # 0.3 m to the right near the touch line: the paths to the left end beyond it (30 deg
+    # would do off it), so right round the opponent
+    assert free((0.0, 9.0), [(1.2, 8.7)]) == -60.0
+    assert free((0.0, 0.0), [(1.2, -0.3)]) == 30.0
+    # none free: the widest passage
+    wall = [(1.0, y) for y in (-1.2, -0.6, 0.0, 0.6, 1.2)]
+    assert abs(free((0.0, 0.0), wall)) == 60.0
+    # in the strategy: instead of the 35 deg dodge away from the nearest opponent
+    attack = AttackConfig(free_space_deg=60.0)
+    behavior = RecordingBehavior("walk", "dribble")
+    rival = SimpleNamespace(unum=10, position=(1.2, 0.3))
+    Strategy(StrategyConfig(attack=attack)).decide(
+        world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival]), behavior
+    )
+    assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(-30.0))
+    with pytest.raises(ValueError, match="free_space_step_deg"):
+        AttackConfig(free_space_deg=60.0, free_space_step_deg=0.0)
 
 
 def test_a_ball_an_opponent_holds_from_the_far_side_is_stood_off_for_a_while_if_told_so():
