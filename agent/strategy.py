@@ -817,23 +817,28 @@ class Strategy:
                     # starts from its first step, under a robot that is in its last one
                     self._gait = self._dribble_kind((bx, by))
                 heading = math.degrees(to_goal)
-                if attack.free_space_deg > 0.0:
-                    heading = free_heading(
-                        (bx, by),
-                        heading,
-                        self._opponent_positions(world),
-                        attack.free_space_deg,
-                        attack.free_space_step_deg,
-                        attack.free_space_ahead_m,
-                        attack.free_space_clear_m,
-                    )
-                elif attack.detour_clear_m <= 0.0:
-                    heading = dodge_heading(
-                        (bx, by), heading, self._opponent_positions(world), attack
-                    )
+                if attack.detour_clear_m <= 0.0:  # a detour passes opponents itself
+                    heading = self._dribble_heading(world, (bx, by), heading)
                 behavior.execute("dribble", self._gait, heading, "left")
                 return
         self._walk_to(world, behavior, approach, math.degrees(to_goal))
+
+    def _dribble_heading(self, world, ball: tuple[float, float], heading_deg: float) -> float:
+        """The dribble's heading past the opponents in its way: into free space
+        (:attr:`AttackConfig.free_space_deg`), else the fixed dodge."""
+        attack = self.config.attack
+        opponents = self._opponent_positions(world)
+        if attack.free_space_deg <= 0.0:
+            return dodge_heading(ball, heading_deg, opponents, attack)
+        return free_heading(
+            ball,
+            heading_deg,
+            opponents,
+            attack.free_space_deg,
+            attack.free_space_step_deg,
+            attack.free_space_ahead_m,
+            attack.free_space_clear_m,
+        )
 
     def _walk_to(self, world, behavior, target: tuple[float, float], heading_deg: float) -> None:
         """Walk to ``target`` facing ``heading_deg`` there, sprinting on the way while it is
