@@ -377,16 +377,19 @@ class StrategyConfig:
     #: Session 14 (after session 13's merge) 11 v 11 with 1.5 m and 11 players, seeds 1-3:
     #: 52 falls and 1 goal against 38 and 0 off, so both stay off (config/team.yaml)
     hold_clear_min_players: int = 0
+    #: dribble into free space (:attr:`AttackConfig.free_space_deg`) only in a team of at
+    #: least this many players (0: any team), the dodge in a smaller one: it cut falls and
+    #: scored in 11 v 11 but not in 3 v 3 (config/team.yaml)
+    free_space_min_players: int = 0
     #: the goalkeeper's unum (it guards its goal instead of attacking); None: no goalkeeper
     goalie_unum: int | None = 1
 
     def __post_init__(self) -> None:
         if self.hold_clear_m < 0.0:
             raise ValueError(f"hold_clear_m must be >= 0, got {self.hold_clear_m}")
-        if not 0 <= self.hold_clear_min_players <= 11:
-            raise ValueError(
-                f"hold_clear_min_players must be 0-11, got {self.hold_clear_min_players}"
-            )
+        for name in ("hold_clear_min_players", "free_space_min_players"):
+            if not 0 <= getattr(self, name) <= 11:
+                raise ValueError(f"{name} must be 0-11, got {getattr(self, name)}")
 
     @property
     def hold_clear(self) -> float:
@@ -395,6 +398,14 @@ class StrategyConfig:
         if len(self.formation) < self.hold_clear_min_players:
             return 0.0
         return self.hold_clear_m
+
+    @property
+    def free_space_deg(self) -> float:
+        """:attr:`AttackConfig.free_space_deg`, or 0 (the dodge) in a team smaller than
+        :attr:`free_space_min_players`."""
+        if len(self.formation) < self.free_space_min_players:
+            return 0.0
+        return self.attack.free_space_deg
 
     @classmethod
     def from_yaml(cls, path: str | Path) -> StrategyConfig:
@@ -828,13 +839,13 @@ class Strategy:
         (:attr:`AttackConfig.free_space_deg`), else the fixed dodge."""
         attack = self.config.attack
         opponents = self._opponent_positions(world)
-        if attack.free_space_deg <= 0.0:
+        if self.config.free_space_deg <= 0.0:
             return dodge_heading(ball, heading_deg, opponents, attack)
         return free_heading(
             ball,
             heading_deg,
             opponents,
-            attack.free_space_deg,
+            self.config.free_space_deg,
             attack.free_space_step_deg,
             attack.free_space_ahead_m,
             attack.free_space_clear_m,

@@ -292,6 +292,20 @@ def test_the_dribble_turns_into_free_space_by_the_fewest_steps_if_told_so():
     assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(-30.0))
     with pytest.raises(ValueError, match="free_space_step_deg"):
         AttackConfig(free_space_deg=60.0, free_space_step_deg=0.0)
+    # only in a team as large as asked for: a 3 v 3 team keeps the dodge
+    from agent.team import TeamConfig
+    from benchmarks.match import small_team
+
+    gated = StrategyConfig(attack=attack, free_space_min_players=11)
+    base = TeamConfig("Us", strategy=gated)
+    assert small_team("Us", 11, base).strategy.free_space_deg == 60.0
+    assert small_team("Us", 3, base).strategy.free_space_deg == 0.0
+    Strategy(small_team("Us", 3, base).strategy).decide(
+        world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival], unum=3), behavior
+    )
+    assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(-35.0))
+    with pytest.raises(ValueError, match="free_space_min_players"):
+        StrategyConfig(free_space_min_players=12)
 
 
 def test_a_ball_an_opponent_holds_from_the_far_side_is_stood_off_for_a_while_if_told_so():
