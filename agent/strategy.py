@@ -204,7 +204,7 @@ class AttackConfig:
     #: S --duration 120``): seeds 1-4 2 goals, 39 falls (off: 0, 47); seeds 5-8 0 goals, 44
     #: falls (off: 0, 54); 3 v 3 seeds 1-8 4 goals, 95 falls (off: 5, 89), see
     #: :attr:`StrategyConfig.free_space_min_players`
-    free_space_deg: float = 0.0
+    free_space_deg: float = 60.0
     free_space_step_deg: float = 15.0
     free_space_ahead_m: float = 2.0
     free_space_clear_m: float = 0.8
@@ -385,7 +385,7 @@ class StrategyConfig:
     #: dribble into free space (:attr:`AttackConfig.free_space_deg`) only in a team of at
     #: least this many players (0: any team), the dodge in a smaller one: it cut falls and
     #: scored in 11 v 11 but not in 3 v 3 (config/team.yaml)
-    free_space_min_players: int = 0
+    free_space_min_players: int = 11
     #: the goalkeeper's unum (it guards its goal instead of attacking); None: no goalkeeper
     goalie_unum: int | None = 1
 

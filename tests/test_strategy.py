@@ -376,13 +376,14 @@ def test_a_started_get_up_runs_until_it_reports_standing():
     assert behavior.calls[-1][0] == "walk"
 
 
-def test_the_dribble_turns_away_from_an_opponent_in_the_way():
-    attack = AttackConfig()
+def test_the_dribble_turns_away_from_an_opponent_in_the_way_without_free_space():
+    attack = AttackConfig(free_space_deg=0.0)
     assert dodge_heading((0.0, 0.0), 0.0, [(1.0, 0.2)], attack) == pytest.approx(-35.0)
     assert dodge_heading((0.0, 0.0), 0.0, [(1.0, -0.2)], attack) == pytest.approx(35.0)
     # behind the ball, far ahead or well to the side: no dodge
     assert dodge_heading((0.0, 0.0), 0.0, [(-0.5, 0.0), (3.0, 0.0), (1.0, 1.5)], attack) == 0.0
-    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    strategy = Strategy(StrategyConfig(attack=attack))
+    behavior = RecordingBehavior("walk", "dribble")
     rival = SimpleNamespace(unum=10, position=(1.2, 0.3))
     strategy.decide(world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival]), behavior)
     assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(-35.0))
@@ -398,7 +399,8 @@ def test_a_player_that_lost_the_ball_turns_to_find_it_and_claims_nothing():
 
 
 def test_a_ball_pushed_against_an_opponent_for_seconds_is_taken_off_sideways():
-    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    strategy = Strategy(StrategyConfig(attack=AttackConfig(free_space_deg=0.0)))
+    behavior = RecordingBehavior("walk", "dribble")
     rival = SimpleNamespace(unum=3, position=(0.4, 0.3))  # ahead, a little to the left
     scene = world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival])
     headings = []
