@@ -1,5 +1,5 @@
 """Beating a goalkeeper: which side of the goal mouth to aim at, and how to pass a keeper that
-has come out of its goal.
+has come out of its goal (or any opponent in the way: :func:`free_heading`).
 
 Why a module of its own: against an empty goal the attacker only needs the goal centre, but
 against a keeper the aim depends on where the keeper stands as seen from the ball, and the
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 
-from world.field_geometry import GOAL_WIDTH, HALF_LENGTH
+from world.field_geometry import GOAL_WIDTH, HALF_LENGTH, HALF_WIDTH
 
 Point = tuple[float, float]
 
@@ -66,6 +66,72 @@ def detour_point(
         return None
     lateral = across - math.copysign(clear_m, across if across else 1.0)
     return (ball[0] + along * ux - lateral * uy, ball[1] + along * uy + lateral * ux)
+
+
+def free_heading(
+    ball: Point,
+    heading_deg: float,
+    opponents: list[Point],
+    max_turn_deg: float,
+    step_deg: float,
+    ahead_m: float,
+    clear_m: float,
+    margin_m: float = 0.5,
+) -> float:
+    """The dribble heading (deg) into free space: ``heading_deg`` when no opponent stands
+    within ``clear_m`` of the path ``ahead_m`` long from the ball that way, else the heading
+    off it by the fewest ``step_deg`` steps (at most ``max_turn_deg``) whose path is free,
+    the side with the wider gap first; with none free, the one whose path passes the
+    opponents widest. Opponents behind the ball (as seen along a path) do not block it, and
+    a turned path that ends within ``margin_m`` of a touch line, or beyond the goal line
+    outside the posts, is not taken.
+
+    Why: dribbling straight at the goal, the attacker ran into the opponent in its way and
+    both fell at the ball (11 v 11, ``scripts/attack/match_probe.py --players 11``: most
+    falls are the active players' ``after dribble`` with an opponent within 0.9 m); the
+    fixed dodge (``AttackConfig.dodge_deg``) turns away from the nearest opponent only, maybe
+    into the next one.
+    """
+    steps = int(max_turn_deg // step_deg) if step_deg > 0.0 else 0
+    best: tuple[float, float, float] | None = None  # (-gap, turn, heading)
+    for k in range(steps + 1):
+        turns = [0.0] if k == 0 else [k * step_deg, -k * step_deg]
+        gaps = {}
+        for turn in turns:
+            h = math.radians(heading_deg + turn)
+            end = (ball[0] + ahead_m * math.cos(h), ball[1] + ahead_m * math.sin(h))
+            if turn and not _on_field(end, margin_m):
+                continue
+            gaps[turn] = _path_gap(ball, end, opponents)
+        for turn, gap in sorted(gaps.items(), key=lambda item: -item[1]):
+            if gap >= clear_m:
+                return heading_deg + turn
+            if best is None or (-gap, abs(turn)) < best[:2]:
+                best = (-gap, abs(turn), heading_deg + turn)
+    return heading_deg if best is None else best[2]
+
+
+def _on_field(point: Point, margin_m: float) -> bool:
+    """Whether ``point`` lies ``margin_m`` inside the touch lines and short of the goal lines,
+    or beyond the opponent goal line between the posts."""
+    if abs(point[1]) > HALF_WIDTH - margin_m or point[0] < -HALF_LENGTH + margin_m:
+        return False
+    return point[0] < HALF_LENGTH - margin_m or abs(point[1]) < GOAL_WIDTH / 2
+
+
+def _path_gap(start: Point, end: Point, opponents: list[Point]) -> float:
+    """The least distance from an opponent ahead of ``start`` (along start -> end) to that
+    segment (infinite with none)."""
+    dx, dy = end[0] - start[0], end[1] - start[1]
+    length2 = dx * dx + dy * dy
+    gap = math.inf
+    for ox, oy in opponents:
+        along = (ox - start[0]) * dx + (oy - start[1]) * dy
+        if along <= 0.0 or length2 == 0.0:
+            continue
+        t = min(1.0, along / length2)
+        gap = min(gap, math.dist((ox, oy), (start[0] + t * dx, start[1] + t * dy)))
+    return gap
 
 
 def _bearing(origin: Point, point: Point) -> float:

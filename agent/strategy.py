@@ -31,7 +31,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from agent.attack_keeper import aim_point, contested, detour_point, open_side
+from agent.attack_keeper import aim_point, contested, detour_point, free_heading, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from behaviors.basic_kick import expected_ball_ego
 from behaviors.kick import FEET, kick_motion
@@ -195,6 +195,19 @@ class AttackConfig:
     dodge_ahead_m: float = 1.8
     dodge_across_m: float = 0.7
     dodge_deg: float = 35.0
+    #: dribble into free space instead of the dodge (0 deg: off, the dodge): an opponent
+    #: within ``free_space_clear_m`` of the path ``free_space_ahead_m`` ahead of the ball
+    #: turns the dribble by the fewest ``free_space_step_deg`` steps, at most
+    #: ``free_space_deg``, that make the path free (:func:`agent.attack_keeper.free_heading`).
+    #: Why: most 11 v 11 falls were the two active players' at the ball, both dribbling into
+    #: each other. 60 deg, 11 v 11 120 s (``scripts/attack/match_probe.py --players 11 --seed
+    #: S --duration 120``): seeds 1-4 2 goals, 39 falls (off: 0, 47); seeds 5-8 0 goals, 44
+    #: falls (off: 0, 54); 3 v 3 seeds 1-8 4 goals, 95 falls (off: 5, 89), see
+    #: :attr:`StrategyConfig.free_space_min_players`
+    free_space_deg: float = 60.0
+    free_space_step_deg: float = 15.0
+    free_space_ahead_m: float = 2.0
+    free_space_clear_m: float = 0.8
     #: the ball within ``hold_guard_m`` of the torso for ``hold_guard_s`` (with gaps shorter
     #: than the referee's 0.5 s reset) makes the player step back for ``back_off_s``: the
     #: referee calls holding at 5 s within 0.12 m, and pushing the ball against an opponent
@@ -243,6 +256,14 @@ class AttackConfig:
     #: at ``sprint_max_turn_deg_s``: turning 20-30 deg/s at full speed tripped the robot)
     sprint_turn_gain: float = 1.0
     sprint_max_turn_deg_s: float = 10.0
+
+    def __post_init__(self) -> None:
+        if not 0.0 <= self.free_space_deg <= 180.0:
+            raise ValueError(f"free_space_deg must be 0-180, got {self.free_space_deg}")
+        if self.free_space_deg > 0.0 and not 0.0 < self.free_space_step_deg <= 90.0:
+            raise ValueError(
+                f"free_space_step_deg must be in (0, 90], got {self.free_space_step_deg}"
+            )
 
 
 @dataclass(frozen=True)
@@ -354,8 +375,42 @@ class StrategyConfig:
     #: cut 11 v 11 falls by a fifth (seeds 1-4 45 against 57, 5-8 47 against 63, goals 0
     #: against 1 and 1 against 0) but 3 v 3 scored less (see config/team.yaml)
     hold_clear_m: float = 0.0
+    #: ... but only in a team of at least this many players (the places of
+    #: :attr:`formation`; 0: any team). Why: keeping clear cut the falls of 11 v 11 but cost
+    #: 3 v 3 goals (see :attr:`hold_clear_m`), and a smaller team's formation lists only the
+    #: places it fields (``benchmarks.match.small_team``), so a team knows its size from it.
+    #: Session 14 (after session 13's merge) 11 v 11 with 1.5 m and 11 players, seeds 1-3:
+    #: 52 falls and 1 goal against 38 and 0 off, so both stay off (config/team.yaml)
+    hold_clear_min_players: int = 0
+    #: dribble into free space (:attr:`AttackConfig.free_space_deg`) only in a team of at
+    #: least this many players (0: any team), the dodge in a smaller one: it cut falls and
+    #: scored in 11 v 11 but not in 3 v 3 (config/team.yaml)
+    free_space_min_players: int = 11
     #: the goalkeeper's unum (it guards its goal instead of attacking); None: no goalkeeper
     goalie_unum: int | None = 1
+
+    def __post_init__(self) -> None:
+        if self.hold_clear_m < 0.0:
+            raise ValueError(f"hold_clear_m must be >= 0, got {self.hold_clear_m}")
+        for name in ("hold_clear_min_players", "free_space_min_players"):
+            if not 0 <= getattr(self, name) <= 11:
+                raise ValueError(f"{name} must be 0-11, got {getattr(self, name)}")
+
+    @property
+    def hold_clear(self) -> float:
+        """The clearance (m) a waiting field player keeps from the ball in this team
+        (:attr:`hold_clear_m`, or 0 in a team smaller than :attr:`hold_clear_min_players`)."""
+        if len(self.formation) < self.hold_clear_min_players:
+            return 0.0
+        return self.hold_clear_m
+
+    @property
+    def free_space_deg(self) -> float:
+        """:attr:`AttackConfig.free_space_deg`, or 0 (the dodge) in a team smaller than
+        :attr:`free_space_min_players`."""
+        if len(self.formation) < self.free_space_min_players:
+            return 0.0
+        return self.attack.free_space_deg
 
     @classmethod
     def from_yaml(cls, path: str | Path) -> StrategyConfig:
@@ -778,13 +833,28 @@ class Strategy:
                     # starts from its first step, under a robot that is in its last one
                     self._gait = self._dribble_kind((bx, by))
                 heading = math.degrees(to_goal)
-                if attack.detour_clear_m <= 0.0:
-                    heading = dodge_heading(
-                        (bx, by), heading, self._opponent_positions(world), attack
-                    )
+                if attack.detour_clear_m <= 0.0:  # a detour passes opponents itself
+                    heading = self._dribble_heading(world, (bx, by), heading)
                 behavior.execute("dribble", self._gait, heading, "left")
                 return
         self._walk_to(world, behavior, approach, math.degrees(to_goal))
+
+    def _dribble_heading(self, world, ball: tuple[float, float], heading_deg: float) -> float:
+        """The dribble's heading past the opponents in its way: into free space
+        (:attr:`AttackConfig.free_space_deg`), else the fixed dodge."""
+        attack = self.config.attack
+        opponents = self._opponent_positions(world)
+        if self.config.free_space_deg <= 0.0:
+            return dodge_heading(ball, heading_deg, opponents, attack)
+        return free_heading(
+            ball,
+            heading_deg,
+            opponents,
+            self.config.free_space_deg,
+            attack.free_space_step_deg,
+            attack.free_space_ahead_m,
+            attack.free_space_clear_m,
+        )
 
     def _walk_to(self, world, behavior, target: tuple[float, float], heading_deg: float) -> None:
         """Walk to ``target`` facing ``heading_deg`` there, sprinting on the way while it is
@@ -1086,7 +1156,7 @@ class Strategy:
     def _waiting_place(self, world) -> tuple[tuple[float, float], bool]:
         """Where this player waits while it does not go for the ball, and whether it has
         moved up with the ball: its place in play (:meth:`play_home`), moved up for an
-        advancing player (:class:`AdvanceConfig`), kept :attr:`StrategyConfig.hold_clear_m`
+        advancing player (:class:`AdvanceConfig`), kept :attr:`StrategyConfig.hold_clear`
         (an advancing player: ``advance.clear_m``) from the ball."""
         home = self.play_home(world.unum)
         advance = self.config.advance
@@ -1098,7 +1168,7 @@ class Strategy:
             or ball[0] < advance.from_x_m
             or opponents_restart(world.play_mode, world.side)
         ):
-            return _clear_of(home, ball, self.config.hold_clear_m), False
+            return _clear_of(home, ball, self.config.hold_clear), False
         x = min(advance.max_x_m, ball[0] - advance.behind_m)
         if advance.step_m > 0.0:
             x = advance.step_m * math.floor(x / advance.step_m)

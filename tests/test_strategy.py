@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from agent.attack_keeper import detour_point, open_side
+from agent.attack_keeper import detour_point, free_heading, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from agent.strategy import (
     SEARCH_TURN_DEG_S,
@@ -263,6 +263,51 @@ def test_a_keeper_in_the_way_is_passed_beside_it_on_its_open_side():
     assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(expected))
 
 
+def test_the_dribble_turns_into_free_space_by_the_fewest_steps_if_told_so():
+    def free(ball, opponents, heading=0.0):
+        return free_heading(ball, heading, opponents, 60.0, 15.0, 2.0, 0.8)
+
+    assert free((0.0, 0.0), []) == 0.0
+    assert free((0.0, 0.0), [(-0.5, 0.1), (3.0, 0.0)]) == 0.0  # behind the ball, beyond the path
+    # 1 m straight ahead: 15-45 deg pass it within 0.8 m, 60 deg does not
+    assert abs(free((0.0, 0.0), [(1.0, 0.0)])) == 60.0
+    # a little to the left of the path: away from it to the right, 30 deg is enough
+    assert free((0.0, 0.0), [(1.2, 0.3)]) == -30.0
+    # ... but with a second one there, left round the first
+    assert free((0.0, 0.0), [(1.2, 0.3), (1.2, -1.2)]) == 60.0
+    # 0.3 m to the right near the touch line: the paths to the left end beyond it (30 deg
+    # would do off it), so right round the opponent
+    assert free((0.0, 9.0), [(1.2, 8.7)]) == -60.0
+    assert free((0.0, 0.0), [(1.2, -0.3)]) == 30.0
+    # none free: the widest passage
+    wall = [(1.0, y) for y in (-1.2, -0.6, 0.0, 0.6, 1.2)]
+    assert abs(free((0.0, 0.0), wall)) == 60.0
+    # in the strategy: instead of the 35 deg dodge away from the nearest opponent
+    attack = AttackConfig(free_space_deg=60.0)
+    behavior = RecordingBehavior("walk", "dribble")
+    rival = SimpleNamespace(unum=10, position=(1.2, 0.3))
+    Strategy(StrategyConfig(attack=attack)).decide(
+        world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival]), behavior
+    )
+    assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(-30.0))
+    with pytest.raises(ValueError, match="free_space_step_deg"):
+        AttackConfig(free_space_deg=60.0, free_space_step_deg=0.0)
+    # only in a team as large as asked for: a 3 v 3 team keeps the dodge
+    from agent.team import TeamConfig
+    from benchmarks.match import small_team
+
+    gated = StrategyConfig(attack=attack, free_space_min_players=11)
+    base = TeamConfig("Us", strategy=gated)
+    assert small_team("Us", 11, base).strategy.free_space_deg == 60.0
+    assert small_team("Us", 3, base).strategy.free_space_deg == 0.0
+    Strategy(small_team("Us", 3, base).strategy).decide(
+        world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival], unum=3), behavior
+    )
+    assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(-35.0))
+    with pytest.raises(ValueError, match="free_space_min_players"):
+        StrategyConfig(free_space_min_players=12)
+
+
 def test_a_ball_an_opponent_holds_from_the_far_side_is_stood_off_for_a_while_if_told_so():
     attack = AttackConfig(yield_opponent_m=0.5, yield_reach_m=0.6, yield_s=2.0)
     strategy = Strategy(StrategyConfig(attack=attack))
@@ -331,13 +376,14 @@ def test_a_started_get_up_runs_until_it_reports_standing():
     assert behavior.calls[-1][0] == "walk"
 
 
-def test_the_dribble_turns_away_from_an_opponent_in_the_way():
-    attack = AttackConfig()
+def test_the_dribble_turns_away_from_an_opponent_in_the_way_without_free_space():
+    attack = AttackConfig(free_space_deg=0.0)
     assert dodge_heading((0.0, 0.0), 0.0, [(1.0, 0.2)], attack) == pytest.approx(-35.0)
     assert dodge_heading((0.0, 0.0), 0.0, [(1.0, -0.2)], attack) == pytest.approx(35.0)
     # behind the ball, far ahead or well to the side: no dodge
     assert dodge_heading((0.0, 0.0), 0.0, [(-0.5, 0.0), (3.0, 0.0), (1.0, 1.5)], attack) == 0.0
-    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    strategy = Strategy(StrategyConfig(attack=attack))
+    behavior = RecordingBehavior("walk", "dribble")
     rival = SimpleNamespace(unum=10, position=(1.2, 0.3))
     strategy.decide(world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival]), behavior)
     assert behavior.calls[-1][:3] == ("dribble", "lfdl", pytest.approx(-35.0))
@@ -353,7 +399,8 @@ def test_a_player_that_lost_the_ball_turns_to_find_it_and_claims_nothing():
 
 
 def test_a_ball_pushed_against_an_opponent_for_seconds_is_taken_off_sideways():
-    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble")
+    strategy = Strategy(StrategyConfig(attack=AttackConfig(free_space_deg=0.0)))
+    behavior = RecordingBehavior("walk", "dribble")
     rival = SimpleNamespace(unum=3, position=(0.4, 0.3))  # ahead, a little to the left
     scene = world((0.0, 0.0), (-0.3, 0.0, 0.0), opponents=[rival])
     headings = []
@@ -571,6 +618,34 @@ def test_a_player_holding_its_place_keeps_clear_of_the_ball_if_told_so():
     far = (home[0] + 3.0, home[1])
     strategy.decide(world(far, (-12.0, -1.0, 0.0), heard=heard, unum=4), behavior)
     assert behavior.calls[-1][1:3] == home
+
+
+def test_keeping_clear_of_the_ball_applies_only_to_a_team_of_the_size_asked_for():
+    from agent.team import TeamConfig
+    from benchmarks.match import small_team
+    from world.yaml_config import ConfigError, config_from_mapping
+
+    base = TeamConfig("Us", strategy=StrategyConfig(hold_clear_m=1.5, hold_clear_min_players=11))
+    assert base.strategy.hold_clear == 1.5
+    assert small_team("Us", 11, base).strategy.hold_clear == 1.5
+    assert small_team("Us", 10, base).strategy.hold_clear == 0.0
+    assert small_team("Us", 3, base).strategy.hold_clear == 0.0
+    # a 3 v 3 player holding its place walks into the duel as with the option off
+    behavior = RecordingBehavior("walk", "dribble")
+    heard = [said(3, 0.3)]  # teammate 3 (the forward) goes for the ball
+    small = Strategy(small_team("Us", 3, base).strategy)
+    home = small.home(2)
+    ball = (home[0] + 0.5, home[1])
+    small.decide(world(ball, (home[0] - 0.5, home[1], 0.0), heard=heard, unum=2), behavior)
+    assert behavior.calls[-1][1:3] == home
+    full = Strategy(base.strategy)
+    home = full.home(7)
+    ball = (home[0] + 0.5, home[1])
+    full.decide(world(ball, (home[0] - 0.5, home[1], 0.0), heard=heard, unum=7), behavior)
+    assert behavior.calls[-1][1:3] == pytest.approx((ball[0] - 1.5, home[1]))
+    for bad in ({"hold_clear_min_players": 12}, {"hold_clear_m": -1.0}):
+        with pytest.raises(ConfigError, match=next(iter(bad))):
+            config_from_mapping(StrategyConfig, bad)
 
 
 def test_a_smaller_team_keeps_the_advancing_players_it_fields_under_their_new_numbers():

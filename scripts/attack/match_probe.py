@@ -7,9 +7,11 @@ repeat the benchmark's for a seed on one machine.
 
 Run: ``python scripts/attack/match_probe.py --seed S [--duration 120] [--set KEY=VALUE ...]``;
 prints the score, per team the seconds its active player spent per skill, the seconds with the
-ball contested (players of both teams within ``CONTEST_M`` of it), ball-lost seconds, and each
-fall: time, team, unum, distance to the ball, nearest opponent and nearest teammate (distance
-and name), skill before the fall.
+ball contested (players of both teams within ``CONTEST_M`` of it), ball-lost seconds, per team
+the player-seconds its standing players spent with the ball lost to them
+(:func:`agent.strategy.ball_lost`: searching instead of playing), and each fall: time, team,
+unum, distance to the ball, nearest opponent and nearest teammate (distance and name), skill
+before the fall.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from agent.match import run_match
+from agent.strategy import ball_lost
 from benchmarks.match import (
     DEFAULT_TEAM_FILE,
     _recorded,
@@ -76,6 +79,7 @@ def main() -> None:
     fallen: set = set()
     last_skill: dict = {}
     zones = Counter()
+    lost = Counter()
 
     def on_cycle(session) -> None:
         if session.referee.play_mode != "PlayOn":
@@ -98,6 +102,8 @@ def main() -> None:
             (fallen.add if is_fallen else fallen.discard)(key)
             if not is_fallen and skill != "get_up":
                 last_skill[key] = skill
+                if agent is not None and ball_lost(agent.world):
+                    lost[key[0]] += CYCLE_S
             if agent is not None and agent.strategy._was_active:
                 st = agent.strategy
                 label = skill
@@ -153,6 +159,7 @@ def main() -> None:
         items = sorted(active_time[team].items(), key=lambda kv: -kv[1])
         print(f"  {team} active: " + ", ".join(f"{k} {v:.0f}" for k, v in items))
     print("  ball near: " + ", ".join(f"{k} {v:.0f}" for k, v in contested.items()))
+    print("  ball lost (player-seconds up): " + ", ".join(f"{k} {lost[k]:.0f}" for k in "LR"))
     print("  ball x zone: " + ", ".join(f"{k:+d} {v:.0f}" for k, v in sorted(zones.items())))
     for t, key, dist, skill, opp, mate in falls:
         print(
