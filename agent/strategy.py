@@ -203,7 +203,8 @@ class AttackConfig:
     #: each other. 60 deg, 11 v 11 120 s (``scripts/attack/match_probe.py --players 11 --seed
     #: S --duration 120``): seeds 1-4 2 goals, 39 falls (off: 0, 47); seeds 5-8 0 goals, 44
     #: falls (off: 0, 54); 3 v 3 seeds 1-8 4 goals, 95 falls (off: 5, 89), see
-    #: :attr:`StrategyConfig.free_space_min_players`. Off since the merge: on the merged checkout seeds 1-4 0 goals, 61 falls on against 2, 46 off
+    #: :attr:`StrategyConfig.free_space_min_players`. Off since the merge: on the merged
+    #: checkout seeds 1-4 gave 0 goals, 61 falls with it against 2 goals, 46 falls without
     free_space_deg: float = 0.0
     free_space_step_deg: float = 15.0
     free_space_ahead_m: float = 2.0
