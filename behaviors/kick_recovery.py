@@ -40,7 +40,7 @@ import numpy as np
 
 from behaviors.ik import leg_ik_for
 from behaviors.joint_control import CYCLE_SECONDS, JointCommands
-from behaviors.keyframes import KeyframePlayer, KeyframeSequence, parse_sequences
+from behaviors.keyframes import KeyframePlayer, KeyframeSequence, ease, parse_sequences
 from behaviors.poses import PoseError, check_fields, check_number, get_pose
 from world.kinematics import body_transforms
 from world.nao_model import robot_spec
@@ -234,7 +234,7 @@ class TorsoToMiddle:
         """Write both legs' targets for this cycle; True once the torso is in place."""
         self._elapsed += CYCLE_SECONDS
         share = min(self._elapsed / self._seconds, 1.0)
-        blend = 0.5 - 0.5 * math.cos(math.pi * share)
+        blend = ease("smooth", share)
         start, end = self._torso_start, self._torso_end
         torso = np.eye(4)
         turn = start[:3, :3].T @ end[:3, :3]
@@ -340,8 +340,7 @@ class LandingCatch:
         if p.hand_back or (
             self._middle is None and not landed and self._elapsed <= p.catch_s + p.hold_s
         ):
-            share = min(self._elapsed / p.catch_s, 1.0)
-            blend = 0.5 - 0.5 * math.cos(math.pi * share)
+            blend = ease("smooth", self._elapsed / p.catch_s)
             goal = self._goal
             self._last = {n: a + (goal[n] - a) * blend for n, a in self._start.items()}
             commands.set_targets(self._last)
