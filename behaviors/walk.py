@@ -170,6 +170,12 @@ class WalkParameters:
     go_to_pitch_back_deg: float = math.inf
     go_to_pitch_back_release_deg: float = 3.0
     go_to_pitch_back_speed: float = 0.1
+    #: walking to a target: the fastest backward walk (m/s), the sideways share scaled with
+    #: it so that the direction holds. Why (session 15, a lead, off): the last random-target
+    #: falls of types 2 and 3 (runs 10102 and 10145, scripts/walk_trace.py) both began as a
+    #: backward walk at about 0.4 m/s to a target 0.4 m behind, a foot spin, and a fall
+    #: backwards. ``inf`` (the default) is off.
+    go_to_max_backward_speed: float = math.inf
     #: walking to a target, the engine's ``landing_roll_lean_gain``. Why (session 10): types
     #: 2 and 4 fell turning at 60-120 deg/s (mostly on the spot) far from their targets, the
     #: torso rolling to one side over 1-2 s (-10 -> -25 deg) while the feet kept their stance
@@ -852,6 +858,10 @@ class WalkSkill(WalkSkillBase):
         speed = max(min(g.position_gain * distance, max_forward), g.min_speed)
         vx = speed * forward / max(distance, 1e-9)
         vy = speed * left / max(distance, 1e-9)
+        backward_cap = engine.params.go_to_max_backward_speed
+        if vx < -backward_cap:
+            share = backward_cap / -vx
+            vx, vy = vx * share, vy * share
         # turning first when the target is off to one side: walking and turning hard at once
         # trips the robot; at 45 degrees or more off it turns on the spot
         slow = math.cos(math.radians(min(2.0 * abs(heading_error), 90.0)))

@@ -466,6 +466,28 @@ def test_near_a_target_the_command_takes_the_drift_off():
     assert command(on, 0.39, 0.0)[0] <= top + 1e-9
 
 
+def test_the_backward_cap_slows_a_backward_walk_and_keeps_its_direction():
+    """``go_to_max_backward_speed`` (session 15, off by default): a target behind is walked to
+    at most that fast backwards, the sideways share scaled by the same factor; a target ahead
+    and the default are untouched."""
+    base = walk_parameters(0)
+    assert base.go_to_max_backward_speed == math.inf
+    capped = replace(base, go_to_max_backward_speed=0.3)
+    skill = WalkSkill()
+
+    def command(params: WalkParameters, x: float, y: float) -> tuple[float, float, float]:
+        skill.reset()
+        return skill._velocity(WalkEngine(0, params), 0.0, 0.0, 0.0, x, y, None)
+
+    free, slow = command(base, -0.35, 0.08), command(capped, -0.35, 0.08)
+    assert free[0] < -0.5  # type 0 walks 0.525 m/s back to a target 0.36 m behind
+    assert slow[0] == pytest.approx(-0.3)
+    assert slow[1] / slow[0] == pytest.approx(free[1] / free[0])
+    assert slow[2] == pytest.approx(free[2])
+    assert command(capped, 0.4, 0.2) == command(base, 0.4, 0.2)
+    assert command(capped, -0.1, 0.0) == command(base, -0.1, 0.0)  # the 0.2 m/s floor: slower
+
+
 def test_walk_to_target_stops_within_10_cm():
     driver = new_driver(0, seed=1, beam=(-6.0, 0.0, 0.0))
     try:
