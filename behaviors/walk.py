@@ -174,7 +174,10 @@ class WalkParameters:
     #: it so that the direction holds. Why (session 15, a lead, off): the last random-target
     #: falls of types 2 and 3 (runs 10102 and 10145, scripts/walk_trace.py) both began as a
     #: backward walk at about 0.4 m/s to a target 0.4 m behind, a foot spin, and a fall
-    #: backwards. ``inf`` (the default) is off.
+    #: backwards. Screen, 0.25 m/s against off (scripts/walk_seed_sets.py --types 0 1 2 3 4
+    #: --seeds 10000 10007 ... 10049, stopped after 33 type-sets each): falls 2 -> 1 (the
+    #: type-2 and type-3 backward falls gone, a new type-0 fall at S = 10035), targets
+    #: 409 -> 404, largest stop 0.079 m both: not conclusive. ``inf`` (the default) is off.
     go_to_max_backward_speed: float = math.inf
     #: walking to a target, the engine's ``landing_roll_lean_gain``. Why (session 10): types
     #: 2 and 4 fell turning at 60-120 deg/s (mostly on the spot) far from their targets, the
