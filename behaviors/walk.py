@@ -57,7 +57,7 @@ WALK_FILE = Path(__file__).resolve().parent / "data" / "walk.yaml"
 #: walk settings newer than the kick's walk (the ``inside_skills`` block of walk.yaml): inside
 #: another skill they keep their defaults (off) unless that block sets them, so the kick walks
 #: as it was tuned and the block stays as the kick's owner left it (session 12)
-OFF_INSIDE_SKILLS = ("go_to_fast_speed", "go_to_settle_frames")
+OFF_INSIDE_SKILLS = ("go_to_fast_speed", "go_to_settle_frames", "go_to_max_backward_speed")
 #: what the heading drift may be measured against (``WalkParameters.heading_hold_reference``)
 HEADING_HOLD_REFERENCES = ("command", "step")
 
@@ -171,13 +171,10 @@ class WalkParameters:
     go_to_pitch_back_release_deg: float = 3.0
     go_to_pitch_back_speed: float = 0.1
     #: walking to a target: the fastest backward walk (m/s), the sideways share scaled with
-    #: it so that the direction holds. Why (session 15, a lead, off): the last random-target
-    #: falls of types 2 and 3 (runs 10102 and 10145, scripts/walk_trace.py) both began as a
-    #: backward walk at about 0.4 m/s to a target 0.4 m behind, a foot spin, and a fall
-    #: backwards. Screen, 0.25 m/s against off (scripts/walk_seed_sets.py --types 0 1 2 3 4
-    #: --seeds 10000 10007 ... 10049, stopped after 33 type-sets each): falls 2 -> 1 (the
-    #: type-2 and type-3 backward falls gone, a new type-0 fall at S = 10035), targets
-    #: 409 -> 404, largest stop 0.079 m both: not conclusive. ``inf`` (the default) is off.
+    #: it so that the direction holds. Why (session 15): the last random-target falls of types
+    #: 2 and 3 (runs 10102 and 10145, scripts/walk_trace.py) both began as a backward walk at
+    #: about 0.4 m/s to a target 0.4 m behind, a foot spin, and a fall backwards. ``inf`` (the
+    #: default) is off; walk.yaml sets 0.25 with its figures.
     go_to_max_backward_speed: float = math.inf
     #: walking to a target, the engine's ``landing_roll_lean_gain``. Why (session 10): types
     #: 2 and 4 fell turning at 60-120 deg/s (mostly on the spot) far from their targets, the

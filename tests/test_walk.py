@@ -178,6 +178,7 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
         "go_to_drift_feedforward_m": own.go_to_drift_feedforward_m,
         "go_to_landing_roll_lean_gain": own.go_to_landing_roll_lean_gain,
         "go_to_settle_frames": own.go_to_settle_frames,
+        "go_to_max_backward_speed": own.go_to_max_backward_speed,
         "step": replace(inside.step, speed_heel_strike=own.step.speed_heel_strike),
     }
     assert replace(inside, **own_only) == own  # nothing else differs
@@ -467,11 +468,13 @@ def test_near_a_target_the_command_takes_the_drift_off():
 
 
 def test_the_backward_cap_slows_a_backward_walk_and_keeps_its_direction():
-    """``go_to_max_backward_speed`` (session 15, off by default): a target behind is walked to
-    at most that fast backwards, the sideways share scaled by the same factor; a target ahead
-    and the default are untouched."""
-    base = walk_parameters(0)
-    assert base.go_to_max_backward_speed == math.inf
+    """``go_to_max_backward_speed`` (session 15; walk.yaml 0.25 m/s on every type, off inside
+    skills): a target behind is walked to at most that fast backwards, the sideways share scaled
+    by the same factor; a target ahead, and one slow enough, are untouched."""
+    for robot_type in range(5):
+        assert walk_parameters(robot_type).go_to_max_backward_speed == pytest.approx(0.25)
+        assert walk_parameters(robot_type, inside_skill=True).go_to_max_backward_speed == math.inf
+    base = replace(walk_parameters(0), go_to_max_backward_speed=math.inf)
     capped = replace(base, go_to_max_backward_speed=0.3)
     skill = WalkSkill()
 
@@ -567,7 +570,8 @@ def _leaning(roll_deg: float) -> SimpleNamespace:
 @pytest.mark.parametrize("roll", (-12.0, 12.0))
 def test_a_rolling_torso_opens_the_swing_foot_on_its_own_side_only(roll):
     """Session 10: types 2 and 4 rolled over to one side turning on the spot, the feet at
-    their stance width. With ``landing_roll_lean_gain`` the step whose swing leg is on the side
+    their stance width (types 1 and 0 have the same landing since sessions 10 and 15, type 3
+    not). With ``landing_roll_lean_gain`` the step whose swing leg is on the side
     the torso rolls to goes that way by the gain times the roll (its foot lands further out);
     the other leg's steps keep their plan. Walking to a target it comes from
     ``go_to_landing_roll_lean_gain``, off inside other skills (the kick) and for walk_velocity."""
@@ -588,7 +592,7 @@ def test_a_rolling_torso_opens_the_swing_foot_on_its_own_side_only(roll):
     off = WalkEngine(2, walk_parameters(2))
     assert off._balanced(turn, _leaning(roll)).left == 0.0
     assert WalkSkill().engine_parameters(walk_parameters(2)).landing_roll_lean_gain > 0.0
-    assert WalkSkill().engine_parameters(walk_parameters(0)).landing_roll_lean_gain == 0.0
+    assert WalkSkill().engine_parameters(walk_parameters(3)).landing_roll_lean_gain == 0.0
     assert WalkVelocitySkill().engine_parameters(walk_parameters(2)).landing_roll_lean_gain == 0
     inside = walk_parameters(2, inside_skill=True)
     assert WalkSkill().engine_parameters(inside).landing_roll_lean_gain == 0.0
