@@ -467,6 +467,14 @@ def random_basic_layout(rng: np.random.Generator) -> tuple[float, float, float]:
     return distance, bearing, bearing + START[2] + rng.uniform(-45.0, 45.0)
 
 
+def basic_layouts(trials: int, seed: int = 0) -> list[tuple[float, float, float]]:
+    """The first ``trials`` basic-kick layouts (:func:`random_basic_layout`) drawn from
+    ``seed``: the benchmark's trial ``k`` plays layout ``k`` (``--layout-seed``), and the tests
+    play the same ones."""
+    rng = np.random.default_rng(seed + 1)  # seed 0 keeps the layouts of earlier rounds
+    return [random_basic_layout(rng) for _ in range(trials)]
+
+
 def _basic_trial_goes_on(cycles: int, phase: str) -> bool:
     """Whether a basic-kick trial runs another cycle: within the time limit, or beyond it while
     the kick motion that started within it plays out (:data:`BASIC_KICK_FINISH_CYCLES`)."""
@@ -626,10 +634,8 @@ def basic_kick_figures(
     ``basic_kick_falls_<stage>`` per :data:`FALL_STAGES` entry. ``only``: run
     just these trial numbers (same layouts); ``verbose`` prints each trial with its trace;
     ``settings``: the run's skill settings."""
-    rng = np.random.default_rng(seed + 1)  # seed 0 keeps the layouts of earlier rounds
     results = []
-    for k in range(trials):
-        layout = random_basic_layout(rng)
+    for k, layout in enumerate(basic_layouts(trials, seed)):
         if only is not None and k not in only:
             continue
         trace = BasicKickTrace() if verbose else None

@@ -51,8 +51,8 @@ pytest.importorskip("pybullet")
 import benchmarks.kick as kick_benchmark
 from benchmarks.kick import (
     BasicKickResult,
+    basic_layouts,
     measure_impact,
-    random_basic_layout,
     run_basic_trial,
     run_trial,
     shuffle_in_place,
@@ -533,8 +533,7 @@ BASIC_TEST_TRIALS = 12
 
 @pytest.fixture(scope="module")
 def basic_kicks() -> list[BasicKickResult]:
-    rng = np.random.default_rng(1)  # benchmarks.kick.basic_kick_figures' draw for seed 0
-    layouts = [random_basic_layout(rng) for _ in range(BASIC_TEST_TRIALS)]
+    layouts = basic_layouts(BASIC_TEST_TRIALS, seed=0)
     return [run_basic_trial("long", k, *layout) for k, layout in enumerate(layouts)]
 
 
