@@ -11,7 +11,8 @@ second later.
 
 Run: ``.venv/bin/python benchmarks/get_up.py [--trials-per-type 20] [--seed 0]
 [--directions front,back] [--types 0,3] [--balance FILE] [--residual FILE]``; prints
-``get_up_success_rate: X``, ``get_up_time_s_median: Y`` and per-type success rates.
+``get_up_success_rate: X``, ``get_up_time_s_median: Y``, ``get_up_first_attempt_rate: Z``
+(trials standing after their first get-up sequence) and per-type success rates.
 """
 
 from __future__ import annotations
@@ -50,6 +51,8 @@ class TrialResult:
     succeeded: bool
     #: seconds from the first get_up cycle to the cycle it reported standing (None: it did not)
     time_s: float | None
+    #: get-up sequences started (side rolls not counted): 1 when the first attempt stood
+    attempts: int = 0
 
 
 #: Called after every get-up cycle with the agent and the cycle number (a trace, a clip).
@@ -120,14 +123,17 @@ def play_get_up(
         cycles += 1
         if observer is not None:
             observer(driver, cycles)
+    attempts = skill.get_up_attempts
     if not finished:
-        return TrialResult(robot_type, direction, seed, lying_on, False, None)
+        return TrialResult(robot_type, direction, seed, lying_on, False, None, attempts)
     elapsed = cycles * CYCLE_SECONDS
     standing_now = driver.is_standing()
     for _ in range(25):  # still up half a second later, holding the stand pose
         driver.run("pose", "stand")
     ok = standing_now and driver.is_standing()
-    return TrialResult(robot_type, direction, seed, lying_on, ok, elapsed if ok else None)
+    return TrialResult(
+        robot_type, direction, seed, lying_on, ok, elapsed if ok else None, attempts
+    )
 
 
 def main() -> None:
@@ -187,9 +193,13 @@ def summary(results: list[TrialResult], robot_types: list[int], show_failures: b
     """The benchmark's report: success rate, median time, rates by type and by lying side,
     and with ``show_failures`` one line per failed trial."""
     times = [r.time_s for r in results if r.time_s is not None]
+    first = sum(r.succeeded and r.attempts == 1 for r in results)
     lines = [
         f"get_up_success_rate: {sum(r.succeeded for r in results) / len(results):.3f}",
         f"get_up_time_s_median: {statistics.median(times) if times else float('nan'):.2f}",
+        # standing after the first get-up sequence (a side roll before it allowed): a
+        # retry rarely fits into the 4 s, so this is what the success rate rests on
+        f"get_up_first_attempt_rate: {first / len(results):.3f}",
     ]
     for robot_type in robot_types:
         mine = [r for r in results if r.robot_type == robot_type]

@@ -43,3 +43,18 @@ def test_a_saved_trial_list_reads_back_grouped_by_its_benchmark_seed(tmp_path):
     assert trials == [(3, "front", 3012), (0, "back", 512), (4, "front", 14015)]
     # trial k of type T at benchmark seed S has seed S + 1000 T + k
     assert [benchmark_seed(t) for t in trials] == [0, 500, 10000]
+
+
+def test_the_benchmark_summary_counts_first_attempts_apart_from_late_retries():
+    from benchmarks.get_up import TrialResult, summary
+
+    results = [
+        TrialResult(0, "back", 0, "back", True, 2.1, attempts=1),
+        TrialResult(0, "front", 1, "front", True, 3.9, attempts=2),
+        TrialResult(0, "left", 2, "back", False, None, attempts=3),
+        TrialResult(0, "right", 3, "back", True, 2.4, attempts=1),
+    ]
+    lines = summary(results, [0], show_failures=True).splitlines()
+    assert "get_up_success_rate: 0.750" in lines
+    assert "get_up_first_attempt_rate: 0.500" in lines
+    assert "failed: type 0 left seed 2 lying back" in lines
