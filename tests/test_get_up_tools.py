@@ -58,3 +58,29 @@ def test_the_benchmark_summary_counts_first_attempts_apart_from_late_retries():
     assert "get_up_success_rate: 0.750" in lines
     assert "get_up_first_attempt_rate: 0.500" in lines
     assert "failed: type 0 left seed 2 lying back" in lines
+
+
+def test_an_es_candidate_becomes_a_screen_variant_and_a_balance():
+    import numpy as np
+
+    from scripts.get_up.es_search import (
+        BALANCE_DIMENSIONS,
+        Dimension,
+        candidate_balance,
+        candidate_variant,
+    )
+
+    dims = [
+        Dimension(3, "llj3", 65.8, 2.0, -90.0, 100.0),
+        Dimension(3, "duration", 0.38, 0.015, 0.1, 0.8),
+        Dimension(4, "laj1", -90.0, 2.0, -120.0, 120.0),
+        *BALANCE_DIMENSIONS,
+    ]
+    values = np.array([70.0, 0.3, -80.0, -5.0, 2.0, 0.0])
+    variant = candidate_variant("get_up_back_type3", dims, values)
+    assert variant == ("get_up_back_type3:3:lj3=70.00,duration=0.30;get_up_back_type3:4:aj1=-80.00")
+    assert variant_knobs(variant) == {}
+    balance = candidate_balance(dims, values, from_frame=3)
+    assert balance is not None and balance.from_frame == 3
+    assert balance.offsets(-10.0) == {"llj3": 10.0, "rlj3": 10.0, "llj5": 0.0, "rlj5": 0.0}
+    assert candidate_balance(dims, np.array([70.0, 0.3, -80.0, -5.0, 0.0, 0.0]), 3) is None
