@@ -12,7 +12,8 @@ Parameters (``--space``): joint targets and durations of the fold, crouch and sq
 ``--sequence`` (left joints; the right twins follow by mirroring) and a
 :class:`behaviors.get_up.RiseBalance` from ``--balance-from`` (setpoint, hip and ankle gains; 0
 gains: off). Score of a candidate: falls standing within 4 s plus a quarter of those that
-stood with their first attempt (a smoother signal than standing alone).
+stood with their first attempt and half the first attempt's peak closeness (torso height
+times uprightness: a signal where candidates fail the same falls).
 
 Every generation prints the mean's score and writes the mean to ``--out`` (JSON: a screen
 variant string for ``screen_sequences.py`` and the balance as YAML text), so a run can be
@@ -47,8 +48,13 @@ from behaviors.get_up import RISE_BALANCE, GetUpSkill, RiseBalance
 from behaviors.keyframes import KeyframeSequence
 from benchmarks.get_up import TrialResult, fall, play_get_up
 from learning.falls import FALL_DIRECTIONS
+from learning.get_up_search import closeness, raw_entries
 from scripts.get_up.screen_sequences import variant_sequences
 from world.nao_model import robot_spec
+
+#: Weights of a fall's stood, stood-at-first-attempt and first-attempt peak closeness: the
+#: closeness separates candidates that fail the same falls (without it whole generations tied).
+SCORE_WEIGHTS = np.array([1.0, 0.25, 0.5])
 
 
 @dataclass(frozen=True)
@@ -65,10 +71,14 @@ class Dimension:
 
 
 def frame_dimensions(
-    entry: Mapping[str, Any], frames: Sequence[int], robot_type: int
+    entry: Mapping[str, Any],
+    frames: Sequence[int],
+    robot_type: int,
+    joints: Sequence[str] = ("llj3", "llj4", "llj5", "laj1"),
 ) -> list[Dimension]:
-    """Hip, knee and ankle pitch, shoulder pitch and the duration of each of ``frames``,
-    starting from the raw entry's values (a frame's pose fills what its joints leave out)."""
+    """``joints`` (left ones: hip, knee and ankle pitch and shoulder pitch by default) and the
+    duration of each of ``frames``, starting from the raw entry's values (a frame's pose
+    fills what its joints leave out)."""
     from behaviors.poses import default_poses
 
     poses = default_poses()
@@ -76,11 +86,11 @@ def frame_dimensions(
     out = []
     for index in frames:
         frame = entry["frames"][index]
-        joints = dict(poses[frame["pose"]].joints) if "pose" in frame else {}
-        joints.update(frame.get("joints", {}))
-        for key in ("llj3", "llj4", "llj5", "laj1"):
+        targets = dict(poses[frame["pose"]].joints) if "pose" in frame else {}
+        targets.update(frame.get("joints", {}))
+        for key in joints:
             low, high = limits[key]
-            out.append(Dimension(index, key, float(joints.get(key, 0.0)), 2.0, low, high))
+            out.append(Dimension(index, key, float(targets.get(key, 0.0)), 2.0, low, high))
         out.append(Dimension(index, "duration", float(frame["duration"]), 0.015, 0.1, 0.8))
     return out
 
@@ -161,21 +171,45 @@ class Bank:
         return cls(falls)
 
 
+def play_one(
+    driver: Any,
+    spec: tuple[int, str, int],
+    side: str | None,
+    sequences: Mapping[str, KeyframeSequence],
+    balances: Mapping[str, RiseBalance],
+) -> tuple[TrialResult, float]:
+    """The benchmark's get-up from this fall with a candidate's sequences and balances, and
+    the peak closeness of its first attempt."""
+    skill = driver.behavior.skill("get_up")
+    assert isinstance(skill, GetUpSkill)
+    skill.sequences = sequences
+    peak = 0.0
+
+    def first_peak(agent: Any, _cycle: int) -> None:
+        nonlocal peak
+        if skill.get_up_attempts <= 1:
+            peak = max(peak, closeness(agent))
+
+    result = play_get_up(driver, *spec, side, balances=balances, observer=first_peak)
+    return result, peak
+
+
 def play_all(
     bank: Bank,
     candidates: Sequence[tuple[Mapping[str, KeyframeSequence], Mapping[str, RiseBalance]]],
     jobs: int,
 ) -> np.ndarray:
-    """Scores of every candidate on every fall: (candidates, falls, 2) of (stood, first)."""
-    out = np.zeros((len(candidates), len(bank.falls), 2))
+    """Scores of every candidate on every fall: (candidates, falls, 3) of stood, stood with
+    the first attempt, and the first attempt's peak closeness (height times uprightness)."""
+    out = np.zeros((len(candidates), len(bank.falls), 3))
     running: dict[int, tuple[int, int, int]] = {}
 
     def reap() -> None:
         pid, _ = os.wait()
         read, c, f = running.pop(pid)
         with os.fdopen(read, "rb") as pipe:
-            result: TrialResult = pickle.loads(pipe.read())
-        out[c, f] = (result.succeeded, result.succeeded and result.attempts == 1)
+            result, peak = pickle.loads(pipe.read())
+        out[c, f] = (result.succeeded, result.succeeded and result.attempts == 1, peak)
 
     for f, (_, driver, spec, side) in enumerate(bank.falls):
         for c, (sequences, balances) in enumerate(candidates):
@@ -186,11 +220,7 @@ def play_all(
             if pid == 0:
                 os.close(read)
                 try:
-                    skill = driver.behavior.skill("get_up")
-                    assert isinstance(skill, GetUpSkill)
-                    skill.sequences = sequences
-                    result = play_get_up(driver, *spec, side, balances=balances)
-                    os.write(write, pickle.dumps(result))
+                    os.write(write, pickle.dumps(play_one(driver, spec, side, sequences, balances)))
                 finally:
                     os._exit(0)
             os.close(write)
@@ -210,7 +240,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--type", type=int, default=3)
     parser.add_argument("--sequence", default="get_up_back_type3")
-    parser.add_argument("--frames", type=int, nargs="+", default=[2, 3, 4])
+    parser.add_argument("--frames", type=int, nargs="+", default=[1, 2, 3, 4])
+    parser.add_argument("--joints", nargs="+", default=["llj1", "llj3", "llj4", "llj5", "laj1"])
     parser.add_argument("--balance-from", type=int, default=3, help="-1: no balance")
     parser.add_argument("--falls", type=int, default=40)
     parser.add_argument("--lying-on", default="back")
@@ -227,10 +258,8 @@ def main() -> None:
         print(saved["variant"])
         print(saved["balance_yaml"])
         return
-    from learning.get_up_search import raw_entries
-
     entry = raw_entries()[args.sequence]
-    dims = frame_dimensions(entry, args.frames, args.type)
+    dims = frame_dimensions(entry, args.frames, args.type, args.joints)
     if args.balance_from >= 0:
         dims += list(BALANCE_DIMENSIONS)
     low = np.array([d.low for d in dims])
@@ -260,7 +289,7 @@ def main() -> None:
         samples = np.clip(mean + spread * noise, low, high)
         values = np.concatenate([mean[None], samples])
         scores = play_all(bank, [build(v) for v in values], args.jobs)
-        fitness = scores[:, :, 0].sum(axis=1) + 0.25 * scores[:, :, 1].sum(axis=1)
+        fitness = (scores @ SCORE_WEIGHTS).sum(axis=1)
         order = np.argsort(-fitness[1:])
         u = utilities(len(order))
         used = (samples - mean) / spread  # the clipped steps
@@ -269,7 +298,8 @@ def main() -> None:
         generation += 1
         print(
             f"gen {generation} {time.monotonic() - started:.0f}s mean-before "
-            f"{scores[0, :, 0].sum():.0f} stood ({scores[0, :, 1].sum():.0f} first) "
+            f"{scores[0, :, 0].sum():.0f} stood ({scores[0, :, 1].sum():.0f} first, "
+            f"score {fitness[0]:.2f}) "
             f"samples best {fitness[1:].max():.2f} median {np.median(fitness[1:]):.2f}",
             flush=True,
         )
