@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from agent.attack_keeper import aim_point, contested, detour_point, free_heading, open_side
+from agent.avoidance import avoidance_waypoint
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from behaviors.basic_kick import expected_ball_ego
 from behaviors.kick import FEET, kick_motion
@@ -257,6 +258,14 @@ class AttackConfig:
     #: at ``sprint_max_turn_deg_s``: turning 20-30 deg/s at full speed tripped the robot)
     sprint_turn_gain: float = 1.0
     sprint_max_turn_deg_s: float = 10.0
+    #: walking to the approach point, a robot (either team, as vision last saw it) standing
+    #: within this of the straight way is walked round, this far to its side (0: walk
+    #: straight through; :func:`agent.avoidance.avoidance_waypoint`) ...
+    avoid_clear_m: float = 0.0
+    #: ... unless it stands within this of the approach point (a contest for the ball) ...
+    avoid_target_zone_m: float = 0.6
+    #: ... by way of a point this far past it along the way
+    avoid_beyond_m: float = 0.3
 
     def __post_init__(self) -> None:
         if not 0.0 <= self.free_space_deg <= 180.0:
@@ -838,7 +847,32 @@ class Strategy:
                     heading = self._dribble_heading(world, (bx, by), heading)
                 behavior.execute("dribble", self._gait, heading, "left")
                 return
+        waypoint = self._round_robots(world, approach)
+        if waypoint is not None:
+            self._walk_to(world, behavior, waypoint, _heading_to(waypoint, approach))
+            return
         self._walk_to(world, behavior, approach, math.degrees(to_goal))
+
+    def _round_robots(self, world, target: tuple[float, float]) -> tuple[float, float] | None:
+        """A waypoint beside a robot in the way to ``target`` (see
+        :attr:`AttackConfig.avoid_clear_m`), or None."""
+        attack = self.config.attack
+        if attack.avoid_clear_m <= 0.0 or world.time is None:
+            return None
+        robots = [
+            p.position[:2]
+            for tracker in (world.opponents, world.teammates)
+            for p in tracker.recent(world.time, OPPONENT_MEMORY_S)
+        ]
+        pose = world.pose
+        return avoidance_waypoint(
+            (pose.x, pose.y),
+            target,
+            robots,
+            attack.avoid_clear_m,
+            attack.avoid_target_zone_m,
+            attack.avoid_beyond_m,
+        )
 
     def _dribble_heading(self, world, ball: tuple[float, float], heading_deg: float) -> float:
         """The dribble's heading past the opponents in its way: into free space

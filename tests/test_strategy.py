@@ -899,3 +899,24 @@ def test_a_far_approach_point_ahead_is_sprinted_to_and_walked_to_near_it_if_told
     default = RecordingBehavior("walk", "walk_velocity", "dribble")
     Strategy().decide(world(ball=(0.0, 0.5), pose=(-6.0, 0.0, 0.0)), default)
     assert default.calls[-1][0] == "walk"
+
+
+def test_walking_to_the_ball_goes_round_a_robot_in_the_way_if_told_so():
+    ball, pose = (0.0, 3.0), (-4.0, 0.0, 0.0)
+    rival = SimpleNamespace(unum=2, position=(-2.0, 1.9))  # on the way, a little to its left
+    plain = RecordingBehavior("walk", "dribble")
+    Strategy().decide(world(ball, pose, opponents=[rival]), plain)
+    assert plain.calls[-1][0] == "walk"
+    straight = plain.calls[-1][1:3]
+    avoid = AttackConfig(avoid_clear_m=0.8, avoid_target_zone_m=0.6, avoid_beyond_m=0.3)
+    behavior = RecordingBehavior("walk", "dribble")
+    Strategy(StrategyConfig(attack=avoid)).decide(world(ball, pose, opponents=[rival]), behavior)
+    name, x, y, heading = behavior.calls[-1]
+    assert name == "walk" and (x, y) != pytest.approx(straight)
+    assert math.dist((x, y), rival.position) == pytest.approx(math.hypot(0.8, 0.3))
+    # the waypoint lies right of the way (the rival is left of it), heading on to the ball
+    way = math.atan2(straight[1] - pose[1], straight[0] - pose[0])
+    across = -(x - pose[0]) * math.sin(way) + (y - pose[1]) * math.cos(way)
+    rival_across = -(-2.0 - pose[0]) * math.sin(way) + (1.9 - pose[1]) * math.cos(way)
+    assert rival_across > 0.0 > across
+    assert heading == pytest.approx(math.degrees(math.atan2(straight[1] - y, straight[0] - x)))
