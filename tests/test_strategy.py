@@ -901,11 +901,12 @@ def test_a_far_approach_point_ahead_is_sprinted_to_and_walked_to_near_it_if_told
     assert default.calls[-1][0] == "walk"
 
 
-def test_walking_to_the_ball_goes_round_a_robot_in_the_way_if_told_so():
+def test_walking_to_the_ball_goes_round_a_robot_in_the_way():
     ball, pose = (0.0, 3.0), (-4.0, 0.0, 0.0)
     rival = SimpleNamespace(unum=2, position=(-2.0, 1.9))  # on the way, a little to its left
     plain = RecordingBehavior("walk", "dribble")
-    Strategy().decide(world(ball, pose, opponents=[rival]), plain)
+    straight_through = StrategyConfig(attack=AttackConfig(avoid_clear_m=0.0))
+    Strategy(straight_through).decide(world(ball, pose, opponents=[rival]), plain)
     assert plain.calls[-1][0] == "walk"
     straight = plain.calls[-1][1:3]
     avoid = AttackConfig(avoid_clear_m=0.8, avoid_target_zone_m=0.6, avoid_beyond_m=0.3)
