@@ -131,9 +131,7 @@ def play_get_up(
     for _ in range(25):  # still up half a second later, holding the stand pose
         driver.run("pose", "stand")
     ok = standing_now and driver.is_standing()
-    return TrialResult(
-        robot_type, direction, seed, lying_on, ok, elapsed if ok else None, attempts
-    )
+    return TrialResult(robot_type, direction, seed, lying_on, ok, elapsed if ok else None, attempts)
 
 
 def main() -> None:
