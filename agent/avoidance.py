@@ -13,6 +13,8 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
+from agent.attack_keeper import detour_point
+
 
 def avoidance_waypoint(
     origin: tuple[float, float],
@@ -24,34 +26,25 @@ def avoidance_waypoint(
 ) -> tuple[float, float] | None:
     """Where to walk instead of straight to ``target``: beside the nearest robot that stands
     ahead within ``clear_m`` of the straight path, ``clear_m`` to the side of it away from the
-    path and ``beyond_m`` past it along the path, or None when the path is clear.
+    path (:func:`agent.attack_keeper.detour_point`, the dribble's detour) and ``beyond_m``
+    past it along the path, or None when the path is clear.
 
     Robots behind ``origin``, beyond the target or within ``target_zone_m`` of it are not in
     the way. The waypoint lies past the robot so that, walking to it, the robot falls behind
     the walker before the waypoint is reached and the walk turns back to the target; the side
     is the one away from the robot, which stays the same as the walker moves round it.
     """
-    if clear_m <= 0.0:
+    length = math.dist(origin, target)
+    if clear_m <= 0.0 or length < 1e-6:
         return None
-    dx, dy = target[0] - origin[0], target[1] - origin[1]
-    length = math.hypot(dx, dy)
-    if length < 1e-6:
-        return None
-    ux, uy = dx / length, dy / length
+    ux, uy = (target[0] - origin[0]) / length, (target[1] - origin[1]) / length
     in_the_way = []
-    for x, y in robots:
-        rx, ry = x - origin[0], y - origin[1]
-        along, across = rx * ux + ry * uy, -rx * uy + ry * ux
-        if along <= 0.0 or abs(across) >= clear_m:
-            continue
-        if math.dist((x, y), target) < target_zone_m or along >= length:
-            continue
-        in_the_way.append((along, across, x, y))
+    for robot in robots:
+        beside = detour_point(origin, target, robot, clear_m, length)
+        if beside is not None and math.dist(robot, target) >= target_zone_m:
+            along = (robot[0] - origin[0]) * ux + (robot[1] - origin[1]) * uy
+            in_the_way.append((along, beside))
     if not in_the_way:
         return None
-    _, across, x, y = min(in_the_way)
-    side = -1.0 if across > 0.0 else 1.0  # pass on the side away from the robot
-    return (
-        x + beyond_m * ux - side * clear_m * uy,
-        y + beyond_m * uy + side * clear_m * ux,
-    )
+    _, (x, y) = min(in_the_way)
+    return x + beyond_m * ux, y + beyond_m * uy

@@ -858,13 +858,9 @@ class Strategy:
         """A waypoint beside a robot in the way to ``target`` (see
         :attr:`AttackConfig.avoid_clear_m`), or None."""
         attack = self.config.attack
-        if attack.avoid_clear_m <= 0.0 or world.time is None:
+        if attack.avoid_clear_m <= 0.0:
             return None
-        robots = [
-            p.position[:2]
-            for tracker in (world.opponents, world.teammates)
-            for p in tracker.recent(world.time, OPPONENT_MEMORY_S)
-        ]
+        robots = _recent_positions(world, "opponents") + _recent_positions(world, "teammates")
         pose = world.pose
         return avoidance_waypoint(
             (pose.x, pose.y),
@@ -1127,10 +1123,7 @@ class Strategy:
         return -1.0 if ball[1] > 0.0 else 1.0
 
     def _opponent_positions(self, world) -> list[tuple[float, float]]:
-        opponents = getattr(world, "opponents", None)
-        if opponents is None or world.time is None:
-            return []
-        return [p.position[:2] for p in opponents.recent(world.time, OPPONENT_MEMORY_S)]
+        return _recent_positions(world, "opponents")
 
     def _guard_goal(self, world, behavior) -> None:
         """Stand in front of the own goal, shifted towards the ball's side, facing the ball."""
@@ -1211,6 +1204,15 @@ class Strategy:
         x = max(home[0], x)
         y = math.copysign(advance.y_m, home[1]) if home[1] else 0.0
         return _clear_of((x, y), ball, advance.clear_m), True
+
+
+def _recent_positions(world, tracker_name: str) -> list[tuple[float, float]]:
+    """Where vision last saw the players of ``world.<tracker_name>`` (``opponents`` or
+    ``teammates``) within :data:`OPPONENT_MEMORY_S`; none without a tracker or a clock."""
+    tracker = getattr(world, tracker_name, None)
+    if tracker is None or world.time is None:
+        return []
+    return [p.position[:2] for p in tracker.recent(world.time, OPPONENT_MEMORY_S)]
 
 
 def _clear_of(

@@ -1,4 +1,4 @@
-"""Evolution-strategy search over one get-up sequence's late frames and a rise balance.
+"""Evolution-strategy search over one get-up sequence's frames and a rise balance.
 
 Why: hand screens of single knobs (``screen_sequences.py``) move a type's back get-up by a
 trial or two either way, and the coordinate search (``learning/get_up_search.py``) over 12
@@ -8,12 +8,12 @@ rank-weighted samples) on a larger bank of falls, every candidate played on the 
 (common random numbers: the falls are made once and each play is a fork of the fallen
 simulator, so a candidate's score is exactly what the benchmark's get-up would do from there).
 
-Parameters (``--space``): joint targets and durations of the fold, crouch and squat frames of
-``--sequence`` (left joints; the right twins follow by mirroring) and a
-:class:`behaviors.get_up.RiseBalance` from ``--balance-from`` (setpoint, hip and ankle gains; 0
-gains: off). Score of a candidate: falls standing within 4 s plus a quarter of those that
-stood with their first attempt and half the first attempt's peak closeness (torso height
-times uprightness: a signal where candidates fail the same falls).
+Parameters: the ``--joints`` targets (left joints; the right twins follow by mirroring) and the
+durations of the ``--frames`` of ``--sequence`` (default: the sit-up, fold, crouch and squat of
+a back get-up) and a :class:`behaviors.get_up.RiseBalance` from ``--balance-from`` (setpoint,
+hip and ankle gains; 0 gains: off; -1: none). Score of a candidate: falls standing within 4 s
+plus a quarter of those that stood with their first attempt and half the first attempt's peak
+closeness (torso height times uprightness: a signal where candidates fail the same falls).
 
 Every generation prints the mean's score and writes the mean to ``--out`` (JSON: a screen
 variant string for ``screen_sequences.py`` and the balance as YAML text), so a run can be
@@ -46,6 +46,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from behaviors.get_up import RISE_BALANCE, GetUpSkill, RiseBalance
 from behaviors.keyframes import KeyframeSequence
+from behaviors.poses import default_poses
 from benchmarks.get_up import TrialResult, fall, play_get_up
 from learning.falls import FALL_DIRECTIONS
 from learning.get_up_search import closeness, raw_entries
@@ -79,8 +80,6 @@ def frame_dimensions(
     """``joints`` (left ones: hip, knee and ankle pitch and shoulder pitch by default) and the
     duration of each of ``frames``, starting from the raw entry's values (a frame's pose
     fills what its joints leave out)."""
-    from behaviors.poses import default_poses
-
     poses = default_poses()
     limits = {j.perceptor: (j.min_deg, j.max_deg) for j in robot_spec(robot_type).joints}
     out = []
