@@ -203,6 +203,10 @@ def summary(results: list[TrialResult], robot_types: list[int], show_failures: b
         mine = [r for r in results if r.robot_type == robot_type]
         rate = sum(r.succeeded for r in mine) / len(mine)
         lines.append(f"get_up_success_rate[type={robot_type}]: {rate:.3f}")
+    for robot_type in robot_types:
+        mine = [r for r in results if r.robot_type == robot_type]
+        rate = sum(r.succeeded and r.attempts == 1 for r in mine) / len(mine)
+        lines.append(f"get_up_first_attempt_rate[type={robot_type}]: {rate:.3f}")
     for side in ("front", "back", "left", "right"):
         mine = [r for r in results if r.lying_on == side]
         if mine:

@@ -57,6 +57,7 @@ def test_the_benchmark_summary_counts_first_attempts_apart_from_late_retries():
     lines = summary(results, [0], show_failures=True).splitlines()
     assert "get_up_success_rate: 0.750" in lines
     assert "get_up_first_attempt_rate: 0.500" in lines
+    assert "get_up_first_attempt_rate[type=0]: 0.500" in lines
     assert "failed: type 0 left seed 2 lying back" in lines
 
 
