@@ -29,11 +29,9 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import os
-import pickle
 import sys
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
@@ -50,6 +48,7 @@ from behaviors.poses import default_poses
 from benchmarks.get_up import TrialResult, fall, play_get_up
 from learning.falls import FALL_DIRECTIONS
 from learning.get_up_search import closeness, raw_entries
+from scripts.get_up.forking import forked_map
 from scripts.get_up.screen_sequences import variant_sequences
 from world.nao_model import robot_spec
 
@@ -200,32 +199,17 @@ def play_all(
 ) -> np.ndarray:
     """Scores of every candidate on every fall: (candidates, falls, 3) of stood, stood with
     the first attempt, and the first attempt's peak closeness (height times uprightness)."""
+    cells = [(f, c) for f in range(len(bank.falls)) for c in range(len(candidates))]
+
+    def task(f: int, c: int) -> Callable[[], tuple[TrialResult, float]]:
+        _, driver, spec, side = bank.falls[f]
+        sequences, balances = candidates[c]
+        return lambda: play_one(driver, spec, side, sequences, balances)
+
     out = np.zeros((len(candidates), len(bank.falls), 3))
-    running: dict[int, tuple[int, int, int]] = {}
-
-    def reap() -> None:
-        pid, _ = os.wait()
-        read, c, f = running.pop(pid)
-        with os.fdopen(read, "rb") as pipe:
-            result, peak = pickle.loads(pipe.read())
+    played = forked_map((task(f, c) for f, c in cells), jobs)
+    for (f, c), (result, peak) in zip(cells, played, strict=True):
         out[c, f] = (result.succeeded, result.succeeded and result.attempts == 1, peak)
-
-    for f, (_, driver, spec, side) in enumerate(bank.falls):
-        for c, (sequences, balances) in enumerate(candidates):
-            while len(running) >= jobs:
-                reap()
-            read, write = os.pipe()
-            pid = os.fork()
-            if pid == 0:
-                os.close(read)
-                try:
-                    os.write(write, pickle.dumps(play_one(driver, spec, side, sequences, balances)))
-                finally:
-                    os._exit(0)
-            os.close(write)
-            running[pid] = (read, c, f)
-    while running:
-        reap()
     return out
 
 

@@ -54,8 +54,6 @@ from __future__ import annotations
 
 import argparse
 import copy
-import os
-import pickle
 import sys
 from collections.abc import Mapping
 from pathlib import Path
@@ -70,6 +68,7 @@ from behaviors.mirror import MIRROR_TABLE
 from benchmarks.get_up import TrialResult, fall, play_get_up, run_trial, trial_specs
 from learning.falls import FALL_DIRECTIONS
 from learning.get_up_search import raw_entries
+from scripts.get_up.forking import forked_call
 from scripts.get_up.sweep_knobs import parse_variant
 
 _FRAME_FIELDS = {"duration", "hold"}
@@ -168,25 +167,16 @@ def _play_forked(
     time_limit: float = 4.0,
 ) -> TrialResult:
     """The get-up from this fall in a forked child (the parent's simulator stays as it was)."""
-    read, write = os.pipe()
-    pid = os.fork()
-    if pid == 0:  # child: play, report, exit without cleanup
-        os.close(read)
-        try:
-            for name, value in (knobs or {}).items():
-                setattr(get_up, name, value)
-            skill = driver.behavior.skill("get_up")
-            assert isinstance(skill, GetUpSkill)
-            skill.sequences = sequences
-            result = play_get_up(driver, *spec, lying_on, time_limit, balances=balances)
-            os.write(write, pickle.dumps(result))
-        finally:
-            os._exit(0)
-    os.close(write)
-    with os.fdopen(read, "rb") as pipe:
-        data = pipe.read()
-    os.waitpid(pid, 0)
-    return pickle.loads(data)
+
+    def play() -> TrialResult:
+        for name, value in (knobs or {}).items():
+            setattr(get_up, name, value)
+        skill = driver.behavior.skill("get_up")
+        assert isinstance(skill, GetUpSkill)
+        skill.sequences = sequences
+        return play_get_up(driver, *spec, lying_on, time_limit, balances=balances)
+
+    return forked_call(play)
 
 
 def read_trials(path: Path) -> list[tuple[int, str, int]]:
