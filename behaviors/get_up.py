@@ -47,6 +47,7 @@ from types import MappingProxyType
 from typing import Any, Protocol
 
 import numpy as np
+import yaml
 
 from behaviors.joint_control import CYCLE_SECONDS, JointCommands
 from behaviors.keyframes import (
@@ -325,25 +326,40 @@ RESIDUAL_FILE = DATA_DIR / "get_up_residual.npz"
 
 class ResidualSource(Protocol):
     """Where the skill gets its residual: offsets (deg, one per :data:`RESIDUAL_ACTIONS`
-    entry) for an observation laid out as :data:`RESIDUAL_OBS_NAMES`."""
+    entry) for an observation laid out as :data:`RESIDUAL_OBS_NAMES`. A source with a
+    ``robot_types`` attribute (a set) acts only for those types; the others play the
+    keyframes alone."""
 
     def residual_deg(self, observation: np.ndarray) -> np.ndarray: ...
 
 
 @dataclass(frozen=True)
 class PolicyResidual:
-    """A trained policy (numpy MLP) as the skill's residual source."""
+    """A trained policy (numpy MLP) as the skill's residual source, for the robot types it
+    was trained on (the ``env.robot_types`` of the training config inside the file; all
+    types where the file does not say). Why: a policy trained on one type has never seen the
+    others' falls, and its type inputs for them are ones it never saw set."""
 
     policy: MlpPolicy
+    robot_types: frozenset[int] = frozenset(range(ROBOT_TYPE_COUNT))
 
     @classmethod
     def load(cls, path: Path) -> PolicyResidual:
         """Load a policy file, checking it takes this observation and gives these actions."""
         scale = [RESIDUAL_MAX_DEG[name] for name in RESIDUAL_ACTIONS]
-        return cls(load_checked_policy(path, RESIDUAL_OBS_NAMES, tuple(RESIDUAL_ACTIONS), scale))
+        policy = load_checked_policy(path, RESIDUAL_OBS_NAMES, tuple(RESIDUAL_ACTIONS), scale)
+        return cls(policy, _trained_robot_types(policy.config_text))
 
     def residual_deg(self, observation: np.ndarray) -> np.ndarray:
         return self.policy.act(observation)
+
+
+def _trained_robot_types(config_text: str) -> frozenset[int]:
+    """The ``env.robot_types`` of a training config (YAML text), all types if absent."""
+    config = yaml.safe_load(config_text) if config_text else None
+    env = config.get("env") if isinstance(config, Mapping) else None
+    types = env.get("robot_types") if isinstance(env, Mapping) else None
+    return frozenset(range(ROBOT_TYPE_COUNT)) if types is None else frozenset(map(int, types))
 
 
 def default_residual() -> ResidualSource | None:
@@ -657,6 +673,8 @@ class GetUpSkill(Skill):
     def _residual_offsets(self, state: RobotState) -> dict[str, float]:
         """This cycle's residual joint offsets (deg); none without a residual or in a roll."""
         if self.residual is None or self._attempt.rolling:
+            return {}
+        if state.robot_type not in getattr(self.residual, "robot_types", (state.robot_type,)):
             return {}
         return residual_offsets(self.residual.residual_deg(self.observe(state)))
 

@@ -13,8 +13,9 @@ command line) at the start; ``checkpoints/`` every ``checkpoint_every`` steps (m
 normaliser); at the end ``model.zip``, ``vecnormalize.pkl`` and ``policy.npz``, the actor
 exported by :mod:`learning.export` with the config and the commit inside. Progress is one log
 line every ``log_every`` steps (steps, steps/s, episodes, success rate and return of the
-recent episodes). Runs are reproducible for a given seed on one machine (one thread:
-``torch.set_num_threads(1)``).
+recent episodes, over every environment). Runs are reproducible for a given seed on one
+machine (one thread: ``torch.set_num_threads(1)``). ``train.n_envs`` > 1 steps that many
+environments in worker processes (a core each); ``ppo.use_sde`` explores with gSDE.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ import time
 from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -36,7 +38,7 @@ import yaml
 from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.utils import set_random_seed
-from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
+from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecNormalize
 from torch import nn
 
 import learning.envs  # noqa: F401  (registers the environments)
@@ -66,9 +68,15 @@ class PpoConfig:
     activation: str = "tanh"
     #: initial log standard deviation of the actions (-1: std 0.37 of the [-1, 1] range)
     log_std_init: float = -1.0
+    #: generalised state-dependent exploration (gSDE): the exploration noise is a function
+    #: of the observation, redrawn every ``sde_sample_freq`` steps (-1: once per rollout),
+    #: so it is smooth in time; iid noise on joint targets every 20 ms shakes a robot that
+    #: the keyframes alone would stand up (docs/tuning-history.md, learned residuals)
+    use_sde: bool = False
+    sde_sample_freq: int = -1
 
     def __post_init__(self) -> None:
-        _check_non_negative_ints(self)
+        _check_non_negative_ints(self, allowed_negative=("sde_sample_freq",))
         if not all(width > 0 for width in self.net_arch):
             raise TrainConfigError(f"net_arch must list positive integers, got {self.net_arch}")
 
@@ -78,6 +86,9 @@ class RunConfig:
     """How long and how reproducibly to train."""
 
     seed: int = 0
+    #: environments stepped in parallel, each in a process of its own (1: in this process);
+    #: PPO's ``n_steps`` is per environment, so a rollout holds n_envs * n_steps steps
+    n_envs: int = 1
     total_timesteps: int = 200_000
     checkpoint_every: int = 50_000
     log_every: int = 10_000
@@ -98,6 +109,14 @@ class TrainConfig:
 
 
 _ACTIVATIONS = {"tanh": nn.Tanh, "relu": nn.ReLU}
+#: What the exported policy file takes from the environment.
+_EXPORTED_ENV_ATTRIBUTES = ("observation_names", "action_names", "action_scale")
+
+
+def _make_env(env_id: str, env_config: dict[str, Any]) -> gym.Env:
+    """One environment; a module-level function so that a worker process can build it
+    (unpickling it imports this module, whose imports register the project's environments)."""
+    return gym.make(env_id, config=env_config)
 
 
 def _section(cls: type, data: Any, where: str) -> Any:
@@ -112,10 +131,12 @@ def _section(cls: type, data: Any, where: str) -> Any:
         raise TrainConfigError(str(error)) from None
 
 
-def _check_non_negative_ints(config: Any) -> None:
+def _check_non_negative_ints(config: Any, allowed_negative: tuple[str, ...] = ()) -> None:
     """Counts, sizes and seeds are integers >= 0 (the types are checked on reading)."""
     for item in fields(config):
         value = getattr(config, item.name)
+        if item.name in allowed_negative:
+            continue
         if isinstance(value, int) and not isinstance(value, bool) and value < 0:
             raise TrainConfigError(f"{item.name} must be an integer >= 0, got {value!r}")
 
@@ -140,8 +161,8 @@ def parse_config(data: Any, where: str = "config") -> TrainConfig:
     if ppo.batch_size < 2 or ppo.n_steps < ppo.batch_size:
         raise TrainConfigError(f"{where}.ppo: need 2 <= batch_size <= n_steps")
     run = _section(RunConfig, data.get("train"), f"{where}.train")
-    if run.total_timesteps < 1 or run.log_every < 1:
-        raise TrainConfigError(f"{where}.train: total_timesteps and log_every must be >= 1")
+    if run.total_timesteps < 1 or run.log_every < 1 or run.n_envs < 1:
+        raise TrainConfigError(f"{where}.train: total_timesteps, log_every and n_envs must be >= 1")
     return TrainConfig(env_id, dict(env), ppo, run)
 
 
@@ -166,22 +187,27 @@ class ProgressLog(BaseCallback):
         self.successes: deque[float] = deque(maxlen=window)
         self.lengths: deque[int] = deque(maxlen=window)
         self.episodes = 0
-        self._steps_in_episode = 0
+        #: per environment: the return and length of the episode under way (rewards as the
+        #: algorithm sees them, i.e. normalised where norm_reward is on)
+        self._running = np.zeros(0)
+        self._steps_in_episode = np.zeros(0, dtype=int)
         self._start = time.monotonic()
         self._next = every
-        self._running = 0.0
 
     def _on_step(self) -> bool:
-        self._running += float(self.locals["rewards"][0])
+        rewards, dones, infos = self.locals["rewards"], self.locals["dones"], self.locals["infos"]
+        if len(self._running) != len(rewards):
+            self._running = np.zeros(len(rewards))
+            self._steps_in_episode = np.zeros(len(rewards), dtype=int)
+        self._running += rewards
         self._steps_in_episode += 1
-        info = self.locals["infos"][0]
-        if self.locals["dones"][0]:
+        for i in np.flatnonzero(dones):
             self.episodes += 1
-            self.returns.append(self._running)
-            self.lengths.append(self._steps_in_episode)
-            self.successes.append(float(info.get("success", False)))
-            self._running = 0.0
-            self._steps_in_episode = 0
+            self.returns.append(float(self._running[i]))
+            self.lengths.append(int(self._steps_in_episode[i]))
+            self.successes.append(float(infos[i].get("success", False)))
+            self._running[i] = 0.0
+            self._steps_in_episode[i] = 0
         if self.num_timesteps >= self._next:
             self._next += self.every
             print(self.summary(), flush=True)
@@ -225,7 +251,8 @@ def make_model(config: TrainConfig, resume: Path | None = None) -> tuple[PPO, Ve
     ``resume`` (a run directory) continues that run's ``model.zip`` and normaliser."""
     run, ppo = config.train, config.ppo
     set_random_seed(run.seed)
-    venv = DummyVecEnv([lambda: gym.make(config.env_id, config=config.env)])
+    makers = [partial(_make_env, config.env_id, dict(config.env)) for _ in range(run.n_envs)]
+    venv = DummyVecEnv(makers) if run.n_envs == 1 else SubprocVecEnv(makers, "forkserver")
     venv.seed(run.seed)
     if resume is not None:
         env = VecNormalize.load(str(resume / "vecnormalize.pkl"), venv)
@@ -247,6 +274,8 @@ def make_model(config: TrainConfig, resume: Path | None = None) -> tuple[PPO, Ve
         ent_coef=ppo.ent_coef,
         vf_coef=ppo.vf_coef,
         max_grad_norm=ppo.max_grad_norm,
+        use_sde=ppo.use_sde,
+        sde_sample_freq=ppo.sde_sample_freq,
         policy_kwargs={
             "net_arch": {"pi": list(ppo.net_arch), "vf": list(ppo.net_arch)},
             "activation_fn": _ACTIVATIONS[ppo.activation],
@@ -289,10 +318,10 @@ def train(
         print(progress.summary(), flush=True)
         model.save(out / "model.zip")
         env.save(str(out / "vecnormalize.pkl"))
-        base = env.venv.envs[0].unwrapped
+        names = {key: env.get_attr(key, indices=0)[0] for key in _EXPORTED_ENV_ATTRIBUTES}
         export_policy(
-            model, env, out / "policy.npz", base.observation_names, base.action_names,
-            base.action_scale, config_text, commit,
+            model, env, out / "policy.npz", names["observation_names"], names["action_names"],
+            names["action_scale"], config_text, commit,
         )  # fmt: skip
     finally:
         env.close()

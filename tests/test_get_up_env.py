@@ -129,3 +129,23 @@ def test_config_errors_name_the_key():
 def test_speed_measurement_runs_episodes():
     result = measure_speed(GetUpEnvConfig(robot_types=(0,), falls_per_type=1), seconds=0.5)
     assert result["steps_per_s"] > 0 and 0.0 <= result["success"] <= 1.0
+
+
+def test_a_residual_for_other_robot_types_leaves_the_keyframes_alone(env):
+    """A residual with ``robot_types`` acts only for those: on a type-1 robot a source made
+    for type 3 is the keyframes alone, one made for type 1 moves it."""
+    from types import SimpleNamespace
+
+    def end_height(robot_types: frozenset[int] | None) -> float:
+        agent, skill = env.bank(1).restore(0)
+        if robot_types is not None:
+            skill.residual = SimpleNamespace(
+                residual_deg=lambda obs: np.full(5, 15.0), robot_types=robot_types
+            )
+        for _ in range(80):
+            agent.run("get_up")
+        return float(agent.robot.torso_position()[2])
+
+    plain = end_height(None)
+    assert end_height(frozenset({3})) == plain
+    assert end_height(frozenset({1})) != plain

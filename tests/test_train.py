@@ -43,7 +43,9 @@ def test_tiny_run_writes_a_loadable_policy(run):
     assert sorted(p.name for p in (out / "checkpoints").iterdir()) == [
         "model_128.zip", "model_256.zip", "vecnormalize_128.pkl", "vecnormalize_256.pkl",
     ]  # fmt: skip
-    assert PolicyResidual.load(path).policy.n_obs == len(RESIDUAL_OBS_NAMES)
+    residual = PolicyResidual.load(path)
+    assert residual.policy.n_obs == len(RESIDUAL_OBS_NAMES)
+    assert residual.robot_types == {0}  # trained on type 0 alone: it acts for type 0 alone
 
 
 def test_numpy_policy_equals_the_torch_actor(run):
@@ -94,3 +96,28 @@ def test_config_errors_name_the_key(tmp_path):
 def test_packaged_configs_are_valid(name, env_id):
     config, _ = load_config(Path(__file__).resolve().parents[1] / f"config/train/{name}.yaml")
     assert config.env_id == env_id
+
+
+def test_parallel_environments_with_gsde_train_and_export(tmp_path):
+    """Two worker processes (train.n_envs) and gSDE exploration: the run counts the steps of
+    both environments, and the exported numpy policy is the deterministic torch actor."""
+    tiny = {
+        **TINY,
+        "ppo": {**TINY["ppo"], "n_steps": 64, "use_sde": True, "sde_sample_freq": 4},
+        "train": {**TINY["train"], "n_envs": 2, "checkpoint_every": 0},
+    }
+    config = tmp_path / "parallel.yaml"
+    config.write_text(yaml.safe_dump(tiny))
+    out = tmp_path / "run"
+    assert cli_main(["train", "--config", str(config), "--out", str(out)]) == 0
+    model = PPO.load(out / "model.zip", device="cpu")
+    assert model.num_timesteps == 256 and model.n_envs == 2 and model.use_sde
+    policy = MlpPolicy.load(out / "policy.npz", RESIDUAL_OBS_NAMES, tuple(RESIDUAL_ACTIONS))
+    obs = np.random.default_rng(1).normal(0, 1, size=len(RESIDUAL_OBS_NAMES)).astype(np.float32)
+    torch_action, _ = model.predict(policy.normalise(obs), deterministic=True)
+    assert np.allclose(policy.raw_action(obs), torch_action, atol=1e-5)
+
+
+def test_n_envs_must_be_positive():
+    with pytest.raises(TrainConfigError, match="n_envs"):
+        parse_config({**TINY, "train": {**TINY["train"], "n_envs": 0}})
