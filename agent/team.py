@@ -16,7 +16,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from agent.agent import Agent, AgentConfig
-from agent.strategy import Strategy, StrategyConfig
+from agent.strategy import Strategy
+from agent.strategy_config import StrategyConfig
 from world.framing import FrameDecoder, FrameError, frame
 from world.yaml_config import load_yaml_config
 

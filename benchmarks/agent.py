@@ -41,7 +41,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from agent.agent import Agent, AgentConfig
 from agent.match import run_match
-from agent.strategy import Strategy, StrategyConfig
+from agent.strategy import Strategy
+from agent.strategy_config import StrategyConfig
 from agent.team import TeamConfig
 
 

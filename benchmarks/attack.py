@@ -29,7 +29,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from agent.agent import Agent, AgentConfig
-from agent.strategy import Strategy, StrategyConfig
+from agent.strategy import Strategy
+from agent.strategy_config import StrategyConfig
 from benchmarks.match import DEFAULT_TEAM_FILE, add_set_option, team_with_overrides
 from sim.physics import CYCLE_SECONDS
 from sim.session import Session, SessionConfig

@@ -14,17 +14,19 @@ from agent.attack_keeper import detour_point, free_heading, open_side
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
 from agent.strategy import (
     SEARCH_TURN_DEG_S,
-    AdvanceConfig,
-    AttackConfig,
     HoldWatch,
-    KeeperConfig,
     Strategy,
-    StrategyConfig,
-    SupportConfig,
     approach_point,
     dodge_heading,
     head_yaw_for,
     search_turn_deg_s,
+)
+from agent.strategy_config import (
+    AdvanceConfig,
+    AttackConfig,
+    KeeperConfig,
+    StrategyConfig,
+    SupportConfig,
 )
 from behaviors.joint_control import JointCommands
 from behaviors.manager import BehaviorRun
