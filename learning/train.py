@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import multiprocessing
 import sys
 import time
 from collections import deque
@@ -117,6 +118,12 @@ def _make_env(env_id: str, env_config: dict[str, Any]) -> gym.Env:
     """One environment; a module-level function so that a worker process can build it
     (unpickling it imports this module, whose imports register the project's environments)."""
     return gym.make(env_id, config=env_config)
+
+
+def _start_method() -> str:
+    """How worker environments start: a fork server where the platform has one (workers do
+    not inherit this process's torch threads or open simulators), else a fresh interpreter."""
+    return "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
 
 
 def _section(cls: type, data: Any, where: str) -> Any:
@@ -252,7 +259,7 @@ def make_model(config: TrainConfig, resume: Path | None = None) -> tuple[PPO, Ve
     run, ppo = config.train, config.ppo
     set_random_seed(run.seed)
     makers = [partial(_make_env, config.env_id, dict(config.env)) for _ in range(run.n_envs)]
-    venv = DummyVecEnv(makers) if run.n_envs == 1 else SubprocVecEnv(makers, "forkserver")
+    venv = DummyVecEnv(makers) if run.n_envs == 1 else SubprocVecEnv(makers, _start_method())
     venv.seed(run.seed)
     if resume is not None:
         env = VecNormalize.load(str(resume / "vecnormalize.pkl"), venv)
