@@ -34,10 +34,7 @@ from dataclasses import dataclass
 from agent.attack_keeper import aim_point, contested, detour_point, free_heading, open_side
 from agent.avoidance import avoidance_waypoint
 from agent.roles import ClaimBoard, claim_message, is_closest, my_turn_to_speak, parse_claim
-from agent.strategy_config import (
-    AttackConfig,
-    StrategyConfig,
-)
+from agent.strategy_config import AttackConfig, StrategyConfig
 from behaviors.basic_kick import expected_ball_ego
 from behaviors.kick import FEET, kick_motion
 from world.field_geometry import GOAL_WIDTH, HALF_LENGTH, HALF_WIDTH

@@ -54,6 +54,11 @@ class TrialResult:
     #: get-up sequences started (side rolls not counted): 1 when the first attempt stood
     attempts: int = 0
 
+    @property
+    def stood_first(self) -> bool:
+        """Standing after the first get-up sequence (a side roll before it allowed)."""
+        return self.succeeded and self.attempts == 1
+
 
 #: Called after every get-up cycle with the agent and the cycle number (a trace, a clip).
 Observer = Callable[[LocalAgent, int], None]
@@ -191,26 +196,23 @@ def summary(results: list[TrialResult], robot_types: list[int], show_failures: b
     """The benchmark's report: success rate, median time, rates by type and by lying side,
     and with ``show_failures`` one line per failed trial."""
     times = [r.time_s for r in results if r.time_s is not None]
-    first = sum(r.succeeded and r.attempts == 1 for r in results)
+    by_type = {t: [r for r in results if r.robot_type == t] for t in robot_types}
     lines = [
-        f"get_up_success_rate: {sum(r.succeeded for r in results) / len(results):.3f}",
+        f"get_up_success_rate: {_rate(results, 'succeeded'):.3f}",
         f"get_up_time_s_median: {statistics.median(times) if times else float('nan'):.2f}",
         # standing after the first get-up sequence (a side roll before it allowed): a
         # retry rarely fits into the 4 s, so this is what the success rate rests on
-        f"get_up_first_attempt_rate: {first / len(results):.3f}",
+        f"get_up_first_attempt_rate: {_rate(results, 'stood_first'):.3f}",
     ]
-    for robot_type in robot_types:
-        mine = [r for r in results if r.robot_type == robot_type]
-        rate = sum(r.succeeded for r in mine) / len(mine)
-        lines.append(f"get_up_success_rate[type={robot_type}]: {rate:.3f}")
-    for robot_type in robot_types:
-        mine = [r for r in results if r.robot_type == robot_type]
-        rate = sum(r.succeeded and r.attempts == 1 for r in mine) / len(mine)
-        lines.append(f"get_up_first_attempt_rate[type={robot_type}]: {rate:.3f}")
+    for name, outcome in (("success", "succeeded"), ("first_attempt", "stood_first")):
+        lines += [
+            f"get_up_{name}_rate[type={t}]: {_rate(mine, outcome):.3f}"
+            for t, mine in by_type.items()
+        ]
     for side in ("front", "back", "left", "right"):
         mine = [r for r in results if r.lying_on == side]
         if mine:
-            rate = sum(r.succeeded for r in mine) / len(mine)
+            rate = _rate(mine, "succeeded")
             lines.append(f"get_up_success_rate[lying_on={side}]: {rate:.3f} ({len(mine)} trials)")
     if show_failures:
         lines += [
@@ -219,6 +221,11 @@ def summary(results: list[TrialResult], robot_types: list[int], show_failures: b
             if not r.succeeded
         ]
     return "\n".join(lines)
+
+
+def _rate(results: list[TrialResult], outcome: str) -> float:
+    """The fraction of ``results`` whose ``outcome`` (``succeeded``, ``stood_first``) holds."""
+    return sum(getattr(r, outcome) for r in results) / len(results)
 
 
 if __name__ == "__main__":

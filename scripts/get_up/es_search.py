@@ -209,7 +209,7 @@ def play_all(
     out = np.zeros((len(candidates), len(bank.falls), 3))
     played = forked_map((task(f, c) for f, c in cells), jobs)
     for (f, c), (result, peak) in zip(cells, played, strict=True):
-        out[c, f] = (result.succeeded, result.succeeded and result.attempts == 1, peak)
+        out[c, f] = (result.succeeded, result.stood_first, peak)
     return out
 
 
