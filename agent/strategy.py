@@ -451,6 +451,8 @@ class Strategy:
             return
         if self._shooting:
             self._end_overdue_shot(world, (bx, by))
+        if attack.finish_no_shot and _in_front_of_goal_mouth((bx, by), attack):
+            self._shooting = False
         goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
         detour = self._detour(world, (bx, by), (goal_x, goal_y))
         if detour is not None:
@@ -729,8 +731,11 @@ class Strategy:
         ):
             near_goal = math.dist(ball, (HALF_LENGTH, 0.0)) < attack.stall_shot_m
             wide = 0.0 < attack.stall_shot_max_y_m < abs(ball[1])
+            pushing_in = attack.finish_no_shot and _in_front_of_goal_mouth(ball, attack)
             if near_goal and wide:
                 self._escape = (now + attack.escape_s, 0.0)  # side 0: to the goal's front
+            elif near_goal and pushing_in:
+                self._stall.reset()  # in the finishing zone: keep pushing it over the line
             elif near_goal:
                 self._shooting, self._shot_since = True, now
             else:

@@ -86,6 +86,12 @@ class AttackConfig:
     #: --start-x 9 --trace 1``)
     finish_m: float = 1.5
     finish_post_margin_m: float = 0.1
+    #: in that finishing zone a stall shot (``stall_shot_m``) ends and none starts: the ball is
+    #: pushed straight over the line by the dribble. Why: a keeper beside the ball 0.7-1.6 m
+    #: before the line kept ``basic_kick`` lining up for 8 s while it walked round the ball
+    #: and cleared it (``python scripts/attack/match_probe.py --players 3 --seed 3 --window
+    #: 55 80``)
+    finish_no_shot: bool = False
     #: aim ``aim_post_margin_m`` inside the post of the side that the keeper (as above)
     #: leaves most open as seen from the ball (:func:`agent.attack_keeper.open_side`), kept
     #: until the other side is better by ``aim_switch_deg`` (0: the rule of ``aim_side_m``)

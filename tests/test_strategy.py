@@ -499,6 +499,40 @@ def test_a_stall_near_the_goal_is_answered_with_a_shot_that_runs_to_its_end():
     assert behavior.calls[-1][0] == "basic_kick"
 
 
+def test_a_stall_in_the_finishing_zone_is_pushed_over_the_line_if_told_so():
+    def skills_at_a_blocked_ball(attack: AttackConfig, ball: tuple[float, float]) -> list[str]:
+        strategy, behavior = (
+            Strategy(StrategyConfig(attack=attack)),
+            RecordingBehavior("walk", "dribble", "basic_kick"),
+        )
+        keeper = SimpleNamespace(unum=1, position=(ball[0] + 0.4, ball[1] + 0.3))
+        scene = world(ball, (ball[0] - 0.3, ball[1], 0.0), opponents=[keeper])
+        for k in range(260):  # 5.2 s at a ball that does not move: a stall after 4 s
+            scene.time = 10.0 + 0.02 * k
+            strategy.decide(scene, behavior)
+        return [call[0] for call in behavior.calls]
+
+    in_the_mouth, further_out = (14.0, -0.4), (12.5, 0.0)
+    assert skills_at_a_blocked_ball(AttackConfig(), in_the_mouth)[-1] == "basic_kick"
+    pushing = AttackConfig(finish_no_shot=True)
+    assert "basic_kick" not in skills_at_a_blocked_ball(pushing, in_the_mouth)
+    assert skills_at_a_blocked_ball(pushing, further_out)[-1] == "basic_kick"
+
+
+def test_a_stall_shot_ends_once_the_ball_reaches_the_finishing_zone_if_told_so():
+    strategy = Strategy(StrategyConfig(attack=AttackConfig(finish_no_shot=True)))
+    behavior = RecordingBehavior("walk", "dribble", "basic_kick")
+    keeper = SimpleNamespace(unum=1, position=(13.0, 0.3))
+    scene = world((12.5, 0.0), (12.2, 0.0, 0.0), opponents=[keeper])
+    for k in range(260):
+        scene.time = 10.0 + 0.02 * k
+        strategy.decide(scene, behavior)
+    assert behavior.calls[-1][0] == "basic_kick"
+    scene.ball.position = (14.0, -0.4)  # pushed on towards the line while the kick lined up
+    strategy.decide(scene, behavior)
+    assert behavior.calls[-1][0] != "basic_kick"
+
+
 def test_a_stall_beside_the_goal_is_escaped_to_its_front_if_told_so():
     def calls_after_a_stall_beside_the_goal(attack: AttackConfig) -> list[tuple]:
         strategy, behavior = (
