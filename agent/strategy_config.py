@@ -90,7 +90,8 @@ class AttackConfig:
     #: pushed straight over the line by the dribble. Why: a keeper beside the ball 0.7-1.6 m
     #: before the line kept ``basic_kick`` lining up for 8 s while it walked round the ball
     #: and cleared it (``python scripts/attack/match_probe.py --players 3 --seed 3 --window
-    #: 55 80``)
+    #: 55 80``). Off: over 32 3 v 3 matches (``benchmarks/match.py --seed 1`` / ``--seed 17``)
+    #: 11 goals against 10, 30 matches alike (docs/tuning-history.md, session 18)
     finish_no_shot: bool = False
     #: aim ``aim_post_margin_m`` inside the post of the side that the keeper (as above)
     #: leaves most open as seen from the ball (:func:`agent.attack_keeper.open_side`), kept
