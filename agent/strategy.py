@@ -451,7 +451,7 @@ class Strategy:
             return
         if self._shooting:
             self._end_overdue_shot(world, (bx, by))
-        if attack.finish_no_shot and _in_front_of_goal_mouth((bx, by), attack):
+        if _no_stall_shot_at((bx, by), attack):
             self._shooting = False
         goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
         detour = self._detour(world, (bx, by), (goal_x, goal_y))
@@ -731,10 +731,9 @@ class Strategy:
         ):
             near_goal = math.dist(ball, (HALF_LENGTH, 0.0)) < attack.stall_shot_m
             wide = 0.0 < attack.stall_shot_max_y_m < abs(ball[1])
-            pushing_in = attack.finish_no_shot and _in_front_of_goal_mouth(ball, attack)
             if near_goal and wide:
                 self._escape = (now + attack.escape_s, 0.0)  # side 0: to the goal's front
-            elif near_goal and pushing_in:
+            elif near_goal and _no_stall_shot_at(ball, attack):
                 self._stall.reset()  # in the finishing zone: keep pushing it over the line
             elif near_goal:
                 self._shooting, self._shot_since = True, now
@@ -885,6 +884,12 @@ def _in_front_of_goal_mouth(ball: tuple[float, float], attack: AttackConfig) -> 
         0.0 < HALF_LENGTH - ball[0] < attack.finish_m
         and abs(ball[1]) < GOAL_WIDTH / 2 - attack.finish_post_margin_m
     )
+
+
+def _no_stall_shot_at(ball: tuple[float, float], attack: AttackConfig) -> bool:
+    """Whether :attr:`AttackConfig.finish_no_shot` keeps stall shots away from a ball lying
+    here (the finishing zone, where the dribble pushes it over the line instead)."""
+    return attack.finish_no_shot and _in_front_of_goal_mouth(ball, attack)
 
 
 def _walk_facing_ball(world, behavior, place: tuple[float, float]) -> None:
