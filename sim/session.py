@@ -88,8 +88,9 @@ class SessionConfig:
     see_interval: int = 3
     beam_noise_xy: float = 0.05
     beam_noise_angle_deg: float = 10.0
-    #: contact model (``sim.contact_models``): "soft" (tuned, the foot pushes the ball) or
-    #: "strike" (the ground carries the softness, the foot strikes the ball at bounce 0.8)
+    #: contact model (``sim.contact_models``): "soft" (tuned, the foot pushes the ball),
+    #: "strike" (the ground carries the softness, the foot strikes the ball at bounce 0.8) or
+    #: "strikers" (as soft, but the feet strike the ball through rigid twins at bounce 0.8)
     contact: str = "soft"
     #: False: no contacts between a robot's own parts, as on the real server
     self_collision: bool = True
