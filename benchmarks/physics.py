@@ -64,9 +64,9 @@ from sim.contact_models import (
     STRIKE_MIN_BOUNCE_SPEED,
     STRIKE_ROBOT_RESTITUTION,
     ContactPhysics,
+    bounce_contact,
     soft_contact,
     strike_contact,
-    striker_contact,
     with_self_collision,
 )
 from sim.field import Ball, build_field
@@ -283,7 +283,7 @@ def _split_contact(
     a heavily over-damped spring on 26 g that pushes it), and a robot's links touch each other
     (and other robots) with k and 2 d_r instead of k / 2 and 2 d.
 
-    Measured in session 19 (not adopted; ``strikers`` is the model that came of it): the ball
+    Measured in session 19 (not adopted; ``bounce`` is the model that came of it): the ball
     rolls and the fidelity checks are unchanged and a foot gives the ball about 2x its speed,
     but the get-up (``--run benchmarks/get_up.py --seed 0``) stands 0.18 with d_r = 4 and 0.60
     with d_r = 40 (0.91 today): the lightly damped, stiffer self-contacts (forearms on the
@@ -395,7 +395,7 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     # the real server's rule: no contacts between a robot's own parts (disableInnerCollision)
     "noself": _together(_contact(_without_self_collision), _session_without_self_collision),
     "strike_feet": _contact(_strike_feet),
-    "strikers": _contact(striker_contact),
+    "bounce": _contact(bounce_contact),
     "split4": _contact(lambda p: _split_contact(p, 4.0)),
     "split40": _contact(lambda p: _split_contact(p, 40.0)),
     "split4_noself": _together(

@@ -135,9 +135,6 @@ class BallPhysics:
     rolling_friction: float = 5e-5
     restitution: float = 0.8
     ccd_swept_sphere_radius: float = 0.8 * BALL_RADIUS
-    #: Bullet collision filter group of the ball (None: Bullet's default); robots with ball
-    #: strikers need ``sim.robot.BALL_GROUP`` here
-    collision_group: int | None = None
 
     @property
     def inertia(self) -> float:
@@ -370,8 +367,6 @@ class Ball:
             ccdSweptSphereRadius=physics.ccd_swept_sphere_radius,
             physicsClientId=client,
         )
-        if physics.collision_group is not None:
-            world.set_collision_filter(body, -1, physics.collision_group, -1)
         return cls(world, body, physics)
 
     @property

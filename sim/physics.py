@@ -97,8 +97,6 @@ class PhysicsWorld:
         self._current_substeps = substeps
         self.client = pybullet.connect(pybullet.DIRECT)
         self._holders: dict[int, StateHolder] = {}
-        # (body, link) -> (group, mask) of links whose collision filter is not the loaders'
-        self._collision_filters: dict[tuple[int, int], tuple[int, int]] = {}
         pybullet.setGravity(0.0, 0.0, GRAVITY, physicsClientId=self.client)
         pybullet.setPhysicsEngineParameter(
             fixedTimeStep=CYCLE_SECONDS / substeps,
@@ -106,10 +104,6 @@ class PhysicsWorld:
             numSolverIterations=SOLVER_ITERATIONS,
             deterministicOverlappingPairs=1,
             warmStartingFactor=0.0,
-            # two links collide when each one's group is in the other's mask (PyBullet's
-            # default is either one: then no link could be kept off the others by its own
-            # filter, see set_collision_filter); the loaders' filters collide alike either way
-            collisionFilterMode=0,
             physicsClientId=self.client,
         )
         if min_bounce_speed is not None:
@@ -134,12 +128,6 @@ class PhysicsWorld:
             for holder in holders:
                 holder.before_substep(k / substeps)
             pybullet.stepSimulation(physicsClientId=self.client)
-
-    def set_collision_filter(self, body: int, link: int, group: int, mask: int) -> None:
-        """Give a link a collision filter group and mask of its own, kept through restores
-        (:meth:`_forget_contacts` resets every other link to the loaders' filter)."""
-        self._collision_filters[(body, link)] = (group, mask)
-        pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=self.client)
 
     # ---------------------------------------------------------------- save / restore
     def register_state_holder(self, holder: StateHolder) -> None:
@@ -225,16 +213,16 @@ class PhysicsWorld:
         PyBullet has no call for this, but setting a link's collision filter removes its
         collision object from the broadphase and adds it again, which destroys every pair (and
         contact manifold) it was part of, self-collision pairs inside a robot included. The
-        filter is set to the link's own (:meth:`set_collision_filter`) or else to the value the
-        loaders give dynamic bodies (group 1, mask all), so collisions are unchanged; static
-        bodies (ground, goals, walls) lose their pairs with the moving bodies all the same.
+        filter is set to the value the loaders give dynamic bodies (group 1, mask all), so
+        collisions are unchanged; static bodies (ground, goals, walls) lose their pairs with
+        the moving bodies all the same.
         """
         cid = self.client
-        default = (DYNAMIC_FILTER_GROUP, ALL_FILTER_MASK)
         for body in self._moving_bodies():  # static bodies keep their own filter
             for link in range(-1, pybullet.getNumJoints(body, physicsClientId=cid)):
-                group, mask = self._collision_filters.get((body, link), default)
-                pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=cid)
+                pybullet.setCollisionFilterGroupMask(
+                    body, link, DYNAMIC_FILTER_GROUP, ALL_FILTER_MASK, physicsClientId=cid
+                )
 
     def close(self) -> None:
         if self.client >= 0 and pybullet.isConnected(self.client):

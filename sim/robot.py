@@ -29,7 +29,6 @@ still do). :attr:`RobotPhysics.self_collision` False does the same here (opt-in:
 
 from __future__ import annotations
 
-import dataclasses
 import hashlib
 import math
 import tempfile
@@ -40,7 +39,7 @@ from pathlib import Path
 import numpy as np
 import pybullet
 
-from sim.physics import CYCLE_SECONDS, DYNAMIC_FILTER_GROUP, GRAVITY, PhysicsWorld
+from sim.physics import CYCLE_SECONDS, GRAVITY, PhysicsWorld
 from world.nao_model import BODY_DRAG, MAX_MOTOR_TORQUE, BodySpec, RobotSpec, robot_spec
 from world.perception import ForceResistance
 
@@ -88,12 +87,6 @@ class RobotPhysics:
     self_collision: bool = True
     #: bodies whose colliders stay rigid even with ``soft_contacts`` (research variants)
     hard_bodies: tuple[str, ...] = ()
-    #: feet (and toes) meet the ball through a rigid twin collider (:data:`STRIKER_SUFFIX`)
-    #: instead of their soft one, so that the foot-ball pair has contact parameters of its
-    #: own (see ``sim.contact_models``); False: the ball touches the soft foot itself
-    ball_strikers: bool = False
-    #: restitution of the strikers (the ball's own multiplies it)
-    striker_restitution: float = 1.0
 
     def collider_dynamics(self, body: str = "") -> dict[str, float]:
         """``changeDynamics`` settings of the collider of ``body``: friction, bounce and, with
@@ -165,16 +158,6 @@ def _sub(a: Vec3, b: Vec3) -> Vec3:
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
 
 
-#: Name suffix of a foot's (or toe's) ball striker: a massless-thin twin of its box, fixed to
-#: it, that touches only the ball (``RobotPhysics.ball_strikers``).
-STRIKER_SUFFIX = "_striker"
-#: Mass (kg) the striker takes from its foot (the robot's total mass stays the same).
-STRIKER_MASS = 1e-3
-#: Collision filter groups (Bullet's own use bits 1-32): the ball, and the strikers, which
-#: collide with the ball only; the feet then do not.
-BALL_GROUP = 64
-STRIKER_GROUP = 128
-
 #: Radius of the spheres at a sole's corners (see :func:`_sole_corners`).
 SOLE_SPHERE_RADIUS = 0.002
 
@@ -224,42 +207,13 @@ def _link_xml(body: BodySpec, frame_origin: Vec3) -> str:
     )
 
 
-def striker_bodies(spec: RobotSpec) -> list[BodySpec]:
-    """The feet and toes that get a ball striker."""
-    return [b for b in spec.bodies if b.collider and b.name.endswith(("foot", "toe"))]
-
-
-def _striker_xml(body: BodySpec, frame_origin: Vec3) -> str:
-    """A striker link (its foot's box, :data:`STRIKER_MASS`) fixed at its foot's frame."""
-    rel = _xyz(_sub(body.centre, frame_origin))
-    twin = dataclasses.replace(body, mass=STRIKER_MASS)
-    ixx, iyy, izz = _inertia(twin)
-    name = body.name + STRIKER_SUFFIX
-    return (
-        f'<link name="{name}"><inertial><origin xyz="{rel}"/>'
-        f'<mass value="{STRIKER_MASS:.9g}"/>'
-        f'<inertia ixx="{ixx:.9g}" iyy="{iyy:.9g}" izz="{izz:.9g}" ixy="0" ixz="0" iyz="0"/>'
-        f"</inertial>{_collision_xml(_sub(body.centre, frame_origin), _geometry(body))}</link>"
-        f'<joint name="{name}" type="fixed"><parent link="{body.name}"/>'
-        f'<child link="{name}"/><origin xyz="0 0 0"/></joint>'
-    )
-
-
-def urdf_text(spec: RobotSpec, strikers: bool = False) -> str:
-    """The URDF of ``spec``: torso as base, one revolute joint per spec joint (and with
-    ``strikers`` a fixed ball striker per foot and toe, its mass taken from the foot)."""
+def urdf_text(spec: RobotSpec) -> str:
+    """The URDF of ``spec``: torso as base, one revolute joint per spec joint."""
     anchors: dict[str, Vec3] = {"torso": (0.0, 0.0, 0.0)}
     for joint in spec.joints:
         anchors[joint.child] = joint.anchor
-    struck = {b.name for b in striker_bodies(spec)} if strikers else set()
     parts = [f'<?xml version="1.0"?><robot name="nao_type{spec.robot_type}">']
-    for body in spec.bodies:
-        if body.name in struck:
-            body = dataclasses.replace(body, mass=body.mass - STRIKER_MASS)
-        parts.append(_link_xml(body, anchors[body.name]))
-    for body in spec.bodies:
-        if body.name in struck:
-            parts.append(_striker_xml(body, anchors[body.name]))
+    parts.extend(_link_xml(body, anchors[body.name]) for body in spec.bodies)
     for joint in spec.joints:
         lo, hi = math.radians(joint.min_deg), math.radians(joint.max_deg)
         parts.append(
@@ -274,9 +228,9 @@ def urdf_text(spec: RobotSpec, strikers: bool = False) -> str:
     return "\n".join(parts)
 
 
-def urdf_path(spec: RobotSpec, strikers: bool = False) -> Path:
+def urdf_path(spec: RobotSpec) -> Path:
     """Write the URDF once (named by its content hash) and return its path."""
-    text = urdf_text(spec, strikers)
+    text = urdf_text(spec)
     digest = hashlib.sha1(text.encode()).hexdigest()[:12]
     path = Path(tempfile.gettempdir()) / f"naosoccer_nao_t{spec.robot_type}_{digest}.urdf"
     if not path.exists():
@@ -376,10 +330,7 @@ class SimRobot:
                 pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_EXCLUDE_PARENT
             )
         self.body_id: int = pybullet.loadURDF(
-            str(urdf_path(self.spec, self.physics.ball_strikers)),
-            position,
-            flags=flags,
-            physicsClientId=self._client,
+            str(urdf_path(self.spec)), position, flags=flags, physicsClientId=self._client
         )
         self._index_links()
         self._striking_links = [
@@ -441,28 +392,11 @@ class SimRobot:
                 kwargs |= p.collider_dynamics(body.name)
             if kwargs:
                 pybullet.changeDynamics(bid, link, physicsClientId=cid, **kwargs)
-        if p.ball_strikers:
-            self._configure_strikers()
         # Without self-collision no pair of this robot's parts collides, so none to exclude.
         excluded = _excluded_pairs(self.spec) if self.physics.self_collision else []
         for a, b in excluded:
             pybullet.setCollisionFilterPair(
                 bid, bid, self._link_of[a], self._link_of[b], 0, physicsClientId=cid
-            )
-
-    def _configure_strikers(self) -> None:
-        """Feet and toes stop touching the ball; their rigid strikers touch only the ball."""
-        p, cid, bid = self.physics, self._client, self.body_id
-        for body in striker_bodies(self.spec):
-            foot, striker = self._link_of[body.name], self._link_of[body.name + STRIKER_SUFFIX]
-            self.world.set_collision_filter(bid, foot, DYNAMIC_FILTER_GROUP, ~BALL_GROUP)
-            self.world.set_collision_filter(bid, striker, STRIKER_GROUP, BALL_GROUP)
-            pybullet.changeDynamics(
-                bid,
-                striker,
-                lateralFriction=p.lateral_friction,
-                restitution=p.striker_restitution,
-                physicsClientId=cid,
             )
 
     def _apply_motors(self, targets: list[float] | None = None) -> None:
@@ -539,9 +473,8 @@ class SimRobot:
         return self.spec.perceptor_names
 
     def link_name(self, link_index: int) -> str:
-        """The body name of a link index of :attr:`body_id` (-1 is the torso; a ball striker
-        is its foot)."""
-        return self._name_of[link_index].removesuffix(STRIKER_SUFFIX)
+        """The body name of a link index of :attr:`body_id` (-1 is the torso)."""
+        return self._name_of[link_index]
 
     def link_index(self, body_name: str) -> int:
         return self._link_of[body_name]

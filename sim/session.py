@@ -90,7 +90,7 @@ class SessionConfig:
     beam_noise_angle_deg: float = 10.0
     #: contact model (``sim.contact_models``): "soft" (tuned, the foot pushes the ball),
     #: "strike" (the ground carries the softness, the foot strikes the ball at bounce 0.8) or
-    #: "strikers" (as soft, but the feet strike the ball through rigid twins at bounce 0.8)
+    #: "bounce" (as soft, with the real server's bounces: the ball off a foot at 0.8)
     contact: str = "soft"
     #: False: no contacts between a robot's own parts, as on the real server
     self_collision: bool = True
