@@ -9,6 +9,7 @@ changes WOULD buy (measured here, not adopted).
     .venv/bin/python benchmarks/physics.py --variant strike --contact   # ball bounce and roll
     .venv/bin/python benchmarks/physics.py --variant strike --run benchmarks/kick.py --impact
     .venv/bin/python benchmarks/physics.py --variant strike --kick-gaps 0.024 0.06 0.1
+    .venv/bin/python benchmarks/physics.py --variant bounce --run benchmarks/kick.py --impact
     .venv/bin/python benchmarks/physics.py --variant strike_noself --run benchmarks/kick.py \
         --seeds 6 --strengths 0 1 --basic-trials 0
 
