@@ -43,6 +43,8 @@ from world.nao_model import robot_spec
 
 #: Penalty (m of score) for a trial in which the robot fell.
 FALL_PENALTY = 5.0
+#: The feet every candidate kicks with (the right one plays the left kick mirrored).
+FEET = ("left", "right")
 
 
 @dataclass(frozen=True)
@@ -208,12 +210,13 @@ def evaluate(
     robot_type: int = 0,
     shuffle: bool = False,
     fall_penalty: float = FALL_PENALTY,
+    feet: tuple[str, ...] = FEET,
 ) -> tuple[float, list[KickResult]]:
-    """Score of full-strength kicks, both feet, from the first ``starts`` of
-    :data:`START_STATES`: the mean distance (a kick that misses counts 0) minus
-    ``fall_penalty`` (:data:`FALL_PENALTY`) per fall. The mean rather than the median, so that
-    a kick that only works from one start scores low. ``shuffle``: each start first plays the
-    alignment shuffle of :data:`SHUFFLES`."""
+    """Score of full-strength kicks with ``feet`` (default both; the right foot plays the
+    mirror image), from the first ``starts`` of :data:`START_STATES`: the mean distance (a kick
+    that misses counts 0) minus ``fall_penalty`` (:data:`FALL_PENALTY`) per fall. The mean
+    rather than the median, so that a kick that only works from one start scores low.
+    ``shuffle``: each start first plays the alignment shuffle of :data:`SHUFFLES`."""
     motions = motions_for(p)
     results = [
         run_trial(
@@ -228,7 +231,7 @@ def evaluate(
             shuffle_m=moved if shuffle else None,
         )
         for (gap, side, wait), moved in zip(START_STATES[:starts], SHUFFLES, strict=False)
-        for foot in ("left", "right")
+        for foot in feet
     ]
     distances = [r.distance_m if r.time_to_contact_s is not None else 0.0 for r in results]
     score = statistics.mean(distances) - fall_penalty * sum(r.fell for r in results)
@@ -246,6 +249,7 @@ def search(
     shuffle: bool = False,
     base: Mapping[str, float] | None = None,
     fall_penalty: float = FALL_PENALTY,
+    feet: tuple[str, ...] = FEET,
 ) -> dict[str, float]:
     """(1 + lambda) evolution from ``base`` (default :func:`start_parameters`), every
     candidate scored on the first ``starts`` start states with ``fall_penalty`` per fall;
@@ -254,7 +258,7 @@ def search(
     deadline = time.monotonic() + 60.0 * minutes
     rng = np.random.default_rng(seed)
     best = clip(start_parameters() if base is None else base)
-    best_score, results = evaluate(best, starts, robot_type, shuffle, fall_penalty)
+    best_score, results = evaluate(best, starts, robot_type, shuffle, fall_penalty, feet)
     print(f"start: {best_score:.2f} ({_shown(results)})", flush=True)
     for generation in range(generations):
         improved = False
@@ -267,7 +271,7 @@ def search(
                     for n, v in best.items()
                 }
             )
-            score, results = evaluate(child, starts, robot_type, shuffle, fall_penalty)
+            score, results = evaluate(child, starts, robot_type, shuffle, fall_penalty, feet)
             if score > best_score:
                 best, best_score, improved = child, score, True
                 print(f"gen {generation}: {best_score:.2f} ({_shown(results)})", flush=True)
@@ -284,18 +288,19 @@ def scan(
     base: Mapping[str, float],
     shuffle: bool = False,
     fall_penalty: float = FALL_PENALTY,
+    feet: tuple[str, ...] = FEET,
 ) -> None:
     """Coordinate scan: score ``base`` with each ``name=value[,value...]`` change applied on
     its own (``a=1+b=2`` changes two at once) and print one ``scan[...]: score`` line each.
     Why besides the evolution: the score is noisy (the kick is sensitive to its start), and a
     (1 + lambda) search keeps a lucky candidate; a scan shows a lever's trend."""
-    score, results = evaluate(base, starts, robot_type, shuffle, fall_penalty)
+    score, results = evaluate(base, starts, robot_type, shuffle, fall_penalty, feet)
     _report("scan[base]", score, results)
     for change in changes:
         for values in _expand(change):
             params = clip({**base, **values})
             label = ",".join(f"{n}={v:g}" for n, v in values.items())
-            score, results = evaluate(params, starts, robot_type, shuffle, fall_penalty)
+            score, results = evaluate(params, starts, robot_type, shuffle, fall_penalty, feet)
             _report(f"scan[{label}]", score, results)
 
 
@@ -322,12 +327,16 @@ def _changes(text: str) -> dict[str, float]:
     return values
 
 
-def write_candidate(p: Mapping[str, float], path: Path) -> None:
-    """Write ``p`` as a kick file for ``benchmarks/kick.py --kicks``: its entry with the
-    packaged kick's distance table, so ``basic_kick`` picks the same strengths (full strength
-    at 3 m) and only the motion differs."""
+def write_candidate(p: Mapping[str, float], path: Path, name: str = KICK_LEFT) -> None:
+    """Write ``p`` as a kick file for ``benchmarks/kick.py --kicks``: its entry named ``name``
+    (``kick_right_aligned``: the right foot's own kick, written for the left foot and played
+    mirrored; an entry already in the file under another name is kept, so a left and a right
+    search can share one file) with the packaged kick's distance table, so ``basic_kick``
+    picks the same strengths (full strength at 3 m) and only the motion differs."""
     entry = {**kick_entry(p), "distances": [list(pair) for pair in kick_motion(0).distances]}
-    path.write_text(yaml.safe_dump({KICK_LEFT: entry}, sort_keys=False, width=100))
+    data = yaml.safe_load(path.read_text()) if path.exists() else {}
+    data = {**(data or {}), name: entry}
+    path.write_text(yaml.safe_dump(data, sort_keys=False, width=100))
 
 
 def _shown(results: list[KickResult]) -> str:
@@ -376,13 +385,27 @@ def main() -> None:
         metavar="FILE",
         help="write --base as a kick file (for benchmarks/kick.py --kicks) and stop",
     )
+    parser.add_argument(
+        "--write-as",
+        default=KICK_LEFT,
+        metavar="NAME",
+        help="--write: the entry's name (kick_right_aligned: the right foot's own kick)",
+    )
+    parser.add_argument(
+        "--feet",
+        nargs="+",
+        choices=FEET,
+        default=list(FEET),
+        help="the feet every candidate kicks with (right: the left kick mirrored)",
+    )
     args = parser.parse_args()
     base = {**start_parameters(), **(_changes(args.base) if args.base else {})}
+    feet = tuple(args.feet)
     if args.write:
-        write_candidate(clip(base), args.write)
+        write_candidate(clip(base), args.write, args.write_as)
         return
     if args.scan:
-        scan(args.scan, args.starts, args.robot_type, base, args.shuffle, args.fall_penalty)
+        scan(args.scan, args.starts, args.robot_type, base, args.shuffle, args.fall_penalty, feet)
         return
     best = search(
         args.generations,
@@ -395,6 +418,7 @@ def main() -> None:
         args.shuffle,
         base,
         args.fall_penalty,
+        feet,
     )
     print(yaml.safe_dump({"parameters": best}, sort_keys=False))
     print(yaml.safe_dump({KICK_LEFT: kick_entry(best)}, sort_keys=False, width=100))

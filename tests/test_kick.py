@@ -440,6 +440,20 @@ def test_a_written_candidate_loads_with_the_packaged_calibration(tmp_path):
     assert candidate.swing_duration(1.0) == pytest.approx(packaged.swing_duration(1.0))
 
 
+def test_a_right_kick_written_beside_a_left_one_keeps_both(tmp_path):
+    """A right-foot search (``kick_search --feet right``) writes its kick as
+    ``kick_right_aligned`` into the left search's file (``--write-as``): both entries load and
+    ``basic_kick`` then plays each foot's own."""
+    path = tmp_path / "candidate.yaml"
+    write_candidate({**start_parameters(), "ball_gap_m": 0.012}, path)
+    write_candidate({**start_parameters(), "roll": 12.0}, path, "kick_right_aligned")
+    kicks = load_kicks(path)
+    assert kicks[KICK_LEFT].ball_gap_m == pytest.approx(0.012)
+    assert set(kicks) == {KICK_LEFT, "kick_right_aligned"}
+    assert kick_motion(0, kicks, "right", aligned=True) is kicks["kick_right_aligned"]
+    assert kick_motion(0, kicks, "left", aligned=True) is kicks[KICK_LEFT]
+
+
 def test_impact_measurement_sees_the_foot_push_the_ball_faster_than_it_moved_before():
     """Measured when written (left, strength 1, seed 1): foot 1.30 m/s the cycle before the
     ball moves, ball 3.14 m/s (the foot keeps pushing and speeds up to about 2.8 m/s), knee at
