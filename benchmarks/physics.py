@@ -397,6 +397,8 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "noself": _together(_contact(_without_self_collision), _session_without_self_collision),
     "strike_feet": _contact(_strike_feet),
     "bounce": _contact(bounce_contact),
+    # robot-ground and robot-robot restitution 1e-4 instead of 0.01 (foot-ball still 0.8)
+    "bounce_r001": _contact(lambda p: bounce_contact(p, 0.01)),
     "split4": _contact(lambda p: _split_contact(p, 4.0)),
     "split40": _contact(lambda p: _split_contact(p, 40.0)),
     "split4_noself": _together(

@@ -100,19 +100,23 @@ def strike_contact(base: ContactPhysics, bounce: bool = True) -> ContactPhysics:
     )
 
 
-def bounce_contact(base: ContactPhysics) -> ContactPhysics:
+def bounce_contact(
+    base: ContactPhysics, robot_restitution: float = STRIKE_ROBOT_RESTITUTION
+) -> ContactPhysics:
     """``base`` with the restitutions of the real server's contacts: foot-ball (every robot
-    collider with the ball), ball-ground and ball-post 0.8, robot-robot and robot-ground 0.01
-    (as ``strike``'s: robot 0.1, ball 8, ground 0.1; Bullet multiplies the two), and the
-    ball's 0.8 m/s minimum bounce speed. Every spring and damper stays as in ``base``."""
-    strike = strike_contact(base)
+    collider with the ball), ball-ground and ball-post 0.8, robot-robot and robot-ground the
+    square of ``robot_restitution`` (Bullet multiplies the two bodies'; the robot r, the ball
+    0.8 / r and the ground r, as ``strike``'s with r = 0.1: 0.01), and the ball's 0.8 m/s
+    minimum bounce speed. Every spring and damper stays as in ``base``."""
+    ball_r = base.ball.restitution / robot_restitution
+    ground_r = base.ball.restitution / ball_r
     return dataclasses.replace(
         base,
-        robot=dataclasses.replace(base.robot, restitution=strike.robot.restitution),
-        ground=dataclasses.replace(base.ground, restitution=strike.ground.restitution),
-        ball=strike.ball,
-        post_restitution=strike.post_restitution,
-        min_bounce_speed=strike.min_bounce_speed,
+        robot=dataclasses.replace(base.robot, restitution=robot_restitution),
+        ground=dataclasses.replace(base.ground, restitution=ground_r),
+        ball=dataclasses.replace(base.ball, restitution=ball_r),
+        post_restitution=base.post_restitution * ground_r,
+        min_bounce_speed=STRIKE_MIN_BOUNCE_SPEED,
     )
 
 
