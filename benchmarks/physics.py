@@ -62,8 +62,6 @@ import sim.physics
 import sim.robot
 import sim.session
 from sim.contact_models import (
-    STRIKE_MIN_BOUNCE_SPEED,
-    STRIKE_ROBOT_RESTITUTION,
     ContactPhysics,
     bounce_contact,
     soft_contact,
@@ -271,11 +269,10 @@ def _contact(
     return apply
 
 
-def _split_contact(
-    base: ContactPhysics, robot_damping: float = 4.0, bounce: bool = True
-) -> ContactPhysics:
+def _split_contact(base: ContactPhysics, robot_damping: float) -> ContactPhysics:
     """``base`` with the ground contact's spring split in two halves in series, one on the
-    robot links and one on the ground, and its damping put (nearly) all on the ground.
+    robot links and one on the ground, its damping put (nearly) all on the ground, and
+    ``bounce``'s restitutions.
 
     Bullet combines two soft bodies' stiffnesses in series and adds their dampings, so a robot
     link (2k, d_r) on a ground (2k, d - d_r) touches it exactly as today's (k, d) link touches
@@ -291,27 +288,18 @@ def _split_contact(
     thighs) throw it. Without self-collision (``split4_noself``) 0.76, as ``noself`` (0.81):
     the robot-ground contact is the same.
     """
-    robot, ball = base.robot, base.ball
-    stiffness, damping = 2.0 * robot.contact_stiffness, robot.contact_damping
-    robot_r = STRIKE_ROBOT_RESTITUTION if bounce else 0.0
-    ball_r = ball.restitution / robot_r if bounce else ball.restitution
-    ground_r = ball.restitution / ball_r
-    return ContactPhysics(
+    stiffness, damping = 2.0 * base.robot.contact_stiffness, base.robot.contact_damping
+    physics = bounce_contact(base)
+    return dataclasses.replace(
+        physics,
         robot=dataclasses.replace(
-            robot,
-            contact_stiffness=stiffness,
-            contact_damping=robot_damping,
-            restitution=robot_r,
+            physics.robot, contact_stiffness=stiffness, contact_damping=robot_damping
         ),
         ground=dataclasses.replace(
-            base.ground,
-            restitution=ground_r,
+            physics.ground,
             contact_stiffness=stiffness,
             contact_damping=damping - robot_damping,
         ),
-        ball=dataclasses.replace(ball, restitution=ball_r),
-        post_restitution=base.post_restitution * ground_r,
-        min_bounce_speed=STRIKE_MIN_BOUNCE_SPEED if bounce else None,
     )
 
 

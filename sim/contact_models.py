@@ -78,25 +78,20 @@ def soft_contact() -> ContactPhysics:
     )
 
 
-def strike_contact(base: ContactPhysics, bounce: bool = True) -> ContactPhysics:
-    """``base`` with the robots' soft-contact parameters moved onto the ground (see the module
-    docstring). Without ``bounce`` the robot links keep restitution 0 (a rigid foot-ball
-    contact that does not bounce), the ball and ground their own."""
-    robot, ball = base.robot, base.ball
-    robot_r = STRIKE_ROBOT_RESTITUTION if bounce else 0.0
-    ball_r = ball.restitution / STRIKE_ROBOT_RESTITUTION if bounce else ball.restitution
-    ground_r = ball.restitution / ball_r
-    return ContactPhysics(
-        robot=dataclasses.replace(robot, soft_contacts=False, restitution=robot_r),
-        ground=dataclasses.replace(
-            base.ground,
-            restitution=ground_r,
-            contact_stiffness=robot.contact_stiffness,
-            contact_damping=robot.contact_damping,
-        ),
-        ball=dataclasses.replace(ball, restitution=ball_r),
+def _with_restitutions(
+    base: ContactPhysics, robot_r: float, ball_r: float, min_bounce_speed: float | None
+) -> ContactPhysics:
+    """``base`` with restitution ``robot_r`` on the robots and ``ball_r`` on the ball, the
+    ground's set so that ball-ground keeps the ball's own bounce (Bullet multiplies the two
+    bodies'), the posts scaled alike, and the world's minimum bounce speed."""
+    ground_r = base.ball.restitution / ball_r
+    return dataclasses.replace(
+        base,
+        robot=dataclasses.replace(base.robot, restitution=robot_r),
+        ground=dataclasses.replace(base.ground, restitution=ground_r),
+        ball=dataclasses.replace(base.ball, restitution=ball_r),
         post_restitution=base.post_restitution * ground_r,
-        min_bounce_speed=STRIKE_MIN_BOUNCE_SPEED,
+        min_bounce_speed=min_bounce_speed,
     )
 
 
@@ -109,14 +104,26 @@ def bounce_contact(
     0.8 / r and the ground r, as ``strike``'s with r = 0.1: 0.01), and the ball's 0.8 m/s
     minimum bounce speed. Every spring and damper stays as in ``base``."""
     ball_r = base.ball.restitution / robot_restitution
-    ground_r = base.ball.restitution / ball_r
+    return _with_restitutions(base, robot_restitution, ball_r, STRIKE_MIN_BOUNCE_SPEED)
+
+
+def strike_contact(base: ContactPhysics, bounce: bool = True) -> ContactPhysics:
+    """``base`` with the robots' soft-contact parameters moved onto the ground (see the module
+    docstring) and ``bounce``'s restitutions. Without ``bounce`` the robot links keep
+    restitution 0 (a rigid foot-ball contact that does not bounce), the ball and ground their
+    own."""
+    if bounce:
+        physics = bounce_contact(base)
+    else:
+        physics = _with_restitutions(base, 0.0, base.ball.restitution, STRIKE_MIN_BOUNCE_SPEED)
     return dataclasses.replace(
-        base,
-        robot=dataclasses.replace(base.robot, restitution=robot_restitution),
-        ground=dataclasses.replace(base.ground, restitution=ground_r),
-        ball=dataclasses.replace(base.ball, restitution=ball_r),
-        post_restitution=base.post_restitution * ground_r,
-        min_bounce_speed=STRIKE_MIN_BOUNCE_SPEED,
+        physics,
+        robot=dataclasses.replace(physics.robot, soft_contacts=False),
+        ground=dataclasses.replace(
+            physics.ground,
+            contact_stiffness=base.robot.contact_stiffness,
+            contact_damping=base.robot.contact_damping,
+        ),
     )
 
 

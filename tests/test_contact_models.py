@@ -134,7 +134,7 @@ def _standing_robot(contact: str) -> tuple[Session, int]:
     robot = session.agents[agent].robot
     assert robot is not None
     robot.place(0.0, 0.0, robot.spec.sole_height() - 0.005, 0.0)
-    session.ball.place((3.0, 3.0, sim.field.BALL_RADIUS))
+    session.ball.place((3.0, 3.0, BALL_RADIUS))
     for _ in range(50):
         session.step()
     return session, agent
