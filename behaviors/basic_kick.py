@@ -198,6 +198,23 @@ def strength_for(motion: KickMotion, distance: float | str) -> float:
     return motion.strength_for(distance)
 
 
+def motion_for(
+    robot_type: int,
+    motions: Mapping[str, KickMotion] | None,
+    foot: str,
+    distance: float | str,
+) -> tuple[KickMotion, bool]:
+    """The motion ``basic_kick`` lines the ball up for and plays after its alignment, and
+    whether it is the long version: the long one where ``distance`` lies beyond the short
+    motion's table (:func:`wants_long`). Why the approach needs to know: each motion has its own
+    ball spot (``ball_gap_m``, ``ball_side_m``), and the long kicks searched under the bounce
+    contacts (session 20) want the ball 1-1.5 cm further out than the short ones."""
+    short = kick_motion(robot_type, motions, foot, aligned=True)
+    if wants_long(short, distance):
+        return kick_motion(robot_type, motions, foot, aligned=True, long=True), True
+    return short, False
+
+
 def ball_gap_for(motion: KickMotion, distance: float | str | None = None) -> float:
     """How far ahead of the toe (m) the ball should lie for a kick of ``distance`` (m or
     "long"; None: the motion's own ``ball_gap_m``): a motion calibrated by its ball gap
@@ -346,7 +363,7 @@ class BasicKickSkill(Skill):
             and world.distance_to(world.ball.position) > CHOOSE_FOOT_DISTANCE_M
         ):
             self.foot = self._choose_foot(context, (target_x, target_y))
-        motion = kick_motion(world.robot.robot_type, self.motions, self.foot, aligned=True)
+        motion, _ = motion_for(world.robot.robot_type, self.motions, self.foot, distance)
         alignment = self._alignment(context, motion, (target_x, target_y))
         if self.phase in ("approach", "back_off"):
             self._approach(context, motion, (target_x, target_y))
@@ -403,10 +420,8 @@ class BasicKickSkill(Skill):
         alignment = self._seen_alignment(alignment, context, motion)
         if alignment.fine or (alignment.ready and self._shuffles >= MAX_SHUFFLES):
             self.phase = "head_up"
-            self._long = wants_long(motion, distance)
-            if self._long:  # the same ball spot: the alignment holds for both motions
-                robot_type = context.world.robot.robot_type
-                motion = kick_motion(robot_type, self.motions, self.foot, aligned=True, long=True)
+            robot_type = context.world.robot.robot_type
+            _, self._long = motion_for(robot_type, self.motions, self.foot, distance)
             self._strength = strength_for(motion, distance)
         elif alignment.within_shuffle and self._shuffles < MAX_SHUFFLES:
             self.phase = "shuffle"
@@ -441,7 +456,7 @@ class BasicKickSkill(Skill):
                 expected_ball_ego(
                     robot_type,
                     foot,
-                    kick_motion(robot_type, self.motions, foot, aligned=True),
+                    motion_for(robot_type, self.motions, foot, self._request)[0],
                     self._request,
                 ),
             )

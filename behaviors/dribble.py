@@ -112,8 +112,13 @@ class DribbleGait:
     #: forward speed (m/s) while the ball lies beyond reach_max_ahead, before the catch-up
     #: terms (0: only they bring the robot back to a ball that rolled off)
     beyond_reach_speed: float = 0.0
-    #: m/s of extra forward speed per metre the ball lies beyond ball_ahead
+    #: m/s of extra forward speed per metre the ball lies beyond ball_ahead (negative
+    #: nearer) ...
     ahead_gain: float = 2.0
+    #: ... or beyond this distance where set (None: ball_ahead). Why a distance of its own:
+    #: under the bounce contacts LFDL slows as the ball comes nearer than 0.4 m, so that its
+    #: toe meets the ball gently, while it still lines up and walks round a ball at ball_ahead
+    catch_up_ahead: float | None = None
     #: share of the ball's own forward speed added (a kicked ball runs off: follow it at once)
     follow_gain: float = 0.0
     #: forward speed limit (m/s) through a sharp turn: from the time the heading error passes
@@ -258,6 +263,8 @@ def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, f
         base = gait.beyond_reach_speed * facing
     else:
         base = 0.0
+    if gait.catch_up_ahead is not None:
+        ahead_error += (gait.ball_ahead - gait.catch_up_ahead) * ux
     catch_up = gait.ahead_gain * ahead_error
     if ahead_error > 0.0:  # following a ball that is nearer than wanted would tread on it
         catch_up += gait.follow_gain * max(inputs.ball_vx, 0.0)

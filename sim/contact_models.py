@@ -5,9 +5,10 @@ Bullet makes a contact soft when EITHER body carries soft-contact parameters (st
 series, damping summed) and multiplies the two bodies' restitutions. The real server's contacts
 are set per pair (ODE surface parameters), so one model cannot match every pair at once:
 
-* ``soft`` (the default, tuned against the real server's traces): every robot collider carries
-  the ground contact's spring (1000 N/m, 80 N s/m per contact point), so foot-ball and
-  robot-robot contacts are that spring too; a foot pushes the ball (ball speed = foot speed).
+* ``soft`` (the default until session 20, tuned against the real server's traces): every robot
+  collider carries the ground contact's spring (1000 N/m, 80 N s/m per contact point), so
+  foot-ball and robot-robot contacts are that spring too; a foot pushes the ball (ball speed =
+  foot speed).
 * ``strike``: the spring sits on the ground instead. Robot-ground contacts stay the same spring
   (1000 N/m in series with a rigid body, 80 + 0 N s/m); foot-ball and robot-robot contacts
   become rigid. Restitutions are chosen so the products match the real server: foot-ball,
@@ -15,9 +16,10 @@ are set per pair (ODE surface parameters), so one model cannot match every pair 
   contact closing slower than 0.8 m/s bounces (the real server's minimum bounce velocity). A
   driven foot then gives the ball 1.8x its speed, as off a rigid foot on the real server.
 
-* ``bounce``: every spring and damper as ``soft``, with the restitutions of ``strike``
-  (foot-ball, ball-ground, ball-post 0.8; robot-ground, robot-robot 0.01) and its 0.8 m/s
-  minimum bounce speed. This is how the real server builds a foot-ball contact: SimSpark's
+* ``bounce`` (the default since session 20): every spring and damper as ``soft``, with the
+  restitutions of ``strike`` (foot-ball, ball-ground, ball-post 0.8; robot-ground,
+  robot-robot 0.01) and its 0.8 m/s minimum bounce speed. This is how the real server builds
+  a foot-ball contact: SimSpark's
   ``ContactJointHandler`` mixes the two colliders' surfaces, so the robot's soft ERP / CFM
   (averaged with the ball's) and the ball's bounce 0.8 (the robot's is off) both apply; a
   bounce is a velocity target, which a 26 g ball meets nearly in full through a soft contact
@@ -31,7 +33,8 @@ are set per pair (ODE surface parameters), so one model cannot match every pair 
 ``sim/robot.py``.
 
 The session builds its world from :func:`contact_physics` (``contact`` and ``self_collision``
-in ``config/server.yaml``); the defaults give exactly the physics built before these options.
+in ``config/server.yaml``); ``contact: soft`` gives exactly the physics built before these
+options, the default ``bounce`` that physics with the real server's bounces.
 """
 
 from __future__ import annotations
@@ -46,6 +49,8 @@ from sim.robot import RobotPhysics
 
 #: The contact models :func:`contact_physics` knows.
 CONTACT_MODELS = ("soft", "strike", "bounce")
+#: The model a session uses unless ``config/server.yaml`` names another.
+DEFAULT_CONTACT_MODEL = "bounce"
 #: Restitution of robot links under ``strike``: with robot r, ball 0.8 / r and ground r, the
 #: products foot-ball and ball-ground are 0.8 while robot-robot and robot-ground are r^2
 #: (0.01: no bounce). Bullet does not clamp one body's value above 1, only products matter.
@@ -135,7 +140,9 @@ def with_self_collision(physics: ContactPhysics, self_collision: bool) -> Contac
     return dataclasses.replace(physics, robot=robot)
 
 
-def contact_physics(model: str = "soft", self_collision: bool = True) -> ContactPhysics:
+def contact_physics(
+    model: str = DEFAULT_CONTACT_MODEL, self_collision: bool = True
+) -> ContactPhysics:
     """The contacts of contact model ``model`` (one of :data:`CONTACT_MODELS`), with or without
     contacts between a robot's own parts."""
     if model not in CONTACT_MODELS:

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from sim.contact_models import CONTACT_MODELS, contact_physics
+from sim.contact_models import CONTACT_MODELS, DEFAULT_CONTACT_MODEL, contact_physics
 from sim.field import DEFAULT_SUBSTEPS, Ball, build_field
 from sim.hearing import Ear, Listener, broadcast
 from sim.monitor import (
@@ -88,10 +88,10 @@ class SessionConfig:
     see_interval: int = 3
     beam_noise_xy: float = 0.05
     beam_noise_angle_deg: float = 10.0
-    #: contact model (``sim.contact_models``): "soft" (tuned, the foot pushes the ball),
-    #: "strike" (the ground carries the softness, the foot strikes the ball at bounce 0.8) or
-    #: "bounce" (as soft, with the real server's bounces: the ball off a foot at 0.8)
-    contact: str = "soft"
+    #: contact model (``sim.contact_models``): "bounce" (the default: the tuned soft springs with
+    #: the real server's bounces, the ball off a foot at 0.8), "soft" (no bounces, the foot
+    #: pushes the ball) or "strike" (the ground carries the softness, the foot strikes the ball)
+    contact: str = DEFAULT_CONTACT_MODEL
     #: False: no contacts between a robot's own parts, as on the real server
     self_collision: bool = True
     referee: RefereeConfig = field(default_factory=RefereeConfig)

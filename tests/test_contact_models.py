@@ -1,8 +1,9 @@
 """The server's contact options (``contact`` and ``self_collision`` in ``config/server.yaml``,
-``sim.contact_models``): the defaults build today's physics, ``strike`` makes a driven foot
-strike the ball at 1 + 0.8 times its speed, ``bounce`` gives today's soft contacts the real
-server's bounces (a ball off a foot at 0.8) and leaves robots standing as they were, and
-``self_collision: false`` keeps a robot's own parts from touching, as on the real server."""
+``sim.contact_models``): the default is ``bounce``, which gives the soft contacts tuned before
+the real server's bounces (a ball off a foot at 0.8) and leaves robots standing as they were;
+``soft`` builds exactly the physics tuned before; ``strike`` makes a driven foot strike the ball
+at 1 + 0.8 times its speed; ``self_collision: false`` keeps a robot's own parts from touching,
+as on the real server."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ import pytest
 
 import sim.field
 import sim.robot
-from sim.contact_models import contact_physics
+from sim.contact_models import STRIKE_MIN_BOUNCE_SPEED, contact_physics
 from sim.field import BALL_RADIUS, DEFAULT_SUBSTEPS, Ball, foot_strike_speed
 from sim.physics import PhysicsWorld
 from sim.robot import SimRobot
@@ -57,12 +58,29 @@ def _self_contacts(self_collision: bool) -> int:
         world.close()
 
 
-def test_server_yaml_keeps_the_frozen_physics() -> None:
+def test_server_yaml_plays_the_real_servers_bounces() -> None:
+    """Since session 20 the server's default is ``bounce``: the soft springs of the tuned
+    physics, the real server's restitutions and minimum bounce speed."""
     config = SessionConfig.from_yaml(CONFIG)
-    assert (config.contact, config.self_collision) == ("soft", True)
+    assert (config.contact, config.self_collision) == ("bounce", True)
+    assert SessionConfig().contact == "bounce"
     session = Session(config)
     try:
         assert session.contact == contact_physics()
+        assert session.contact == contact_physics("bounce")
+        assert session.contact.min_bounce_speed == STRIKE_MIN_BOUNCE_SPEED
+        assert (
+            session.contact.robot.contact_stiffness == sim.robot.DEFAULT_PHYSICS.contact_stiffness
+        )
+        assert session.contact.ball.restitution > sim.field.DEFAULT_BALL.restitution
+    finally:
+        session.world.close()
+
+
+def test_soft_contact_keeps_the_frozen_physics() -> None:
+    """``contact: soft`` builds exactly the physics tuned before the contact options existed."""
+    session = Session(SessionConfig(contact="soft"))
+    try:
         assert session.contact.robot is sim.robot.DEFAULT_PHYSICS
         assert session.contact.ball is sim.field.DEFAULT_BALL
         assert session.contact.min_bounce_speed is None

@@ -518,15 +518,16 @@ def test_front_get_up_of_types_1_to_4_keeps_the_arms_down(monkeypatch):
 
 
 def test_type0_back_crouch_with_less_hip_flexion_brings_a_benchmark_fall_up(monkeypatch):
-    """Benchmark fall type 0 seed 517 (``--seed 500``, ends on the back): with type 0's own
-    back get-up (crouch lj3 65 instead of the common 75) the robot stands within 4 s; with the
-    common back get-up it does not."""
+    """Fall type 0 seed 73 (ends on the back; ``scripts/get_up/pin_search.py --case
+    type0_back_crouch``): with type 0's own back get-up (crouch lj3 65 instead of the common
+    75) the robot stands within 4 s (3.38 s); with the common back get-up it does not. (Seed
+    517 until session 20's bounce contacts.)"""
     own = sequence_for("get_up_back", 0)
     assert own.name == "get_up_back_type0"
     assert own.frames[3].joints["llj3"] < sequence_for("get_up_back", 2).frames[3].joints["llj3"]
-    assert run_trial(0, "back", 517).succeeded
+    assert run_trial(0, "back", 73).succeeded
     _package_without(monkeypatch, "get_up_back_type0")
-    assert not run_trial(0, "back", 517).succeeded
+    assert not run_trial(0, "back", 73).succeeded
 
 
 def _package_without(monkeypatch, sequence_name: str) -> None:
@@ -540,40 +541,43 @@ def _package_without(monkeypatch, sequence_name: str) -> None:
 
 
 def test_a_front_get_up_tipping_back_is_caught_from_its_pitch_rate(monkeypatch):
-    """Benchmark fall type 2 seed 2019 (``--seed 0``, ends on the front): the front get-up
-    tips back in its squat at 1.4 s; caught from the pitch predicted 0.1 s ahead, the back
-    get-up that follows has the robot standing at 3.72 s, caught from the pitch alone it does
-    not. (Until session 11 type 1 seed 1500 with its old front fold; type 1's new back get-up
-    brings that one up either way.)"""
+    """Fall type 2 seed 2023 (ends on the front; ``scripts/get_up/pin_search.py --case
+    front_abort_horizon``): with the front get-up abandoned from the pitch predicted 0.1 s
+    ahead the robot stands at 3.14 s, from the pitch alone it does not. (Until session 20's
+    bounce contacts seed 2019, whose front get-up tipped back in its squat at 1.4 s; until
+    session 11 type 1 seed 1500 with its old front fold.)"""
     assert get_up_module.FRONT_ABORT_HORIZON_S > 0
-    assert run_trial(2, "front", 2019).succeeded
+    assert run_trial(2, "front", 2023).succeeded
     monkeypatch.setattr(get_up_module, "FRONT_ABORT_HORIZON_S", 0.0)
-    assert not run_trial(2, "front", 2019).succeeded
+    assert not run_trial(2, "front", 2023).succeeded
 
 
 def test_type3_side_roll_with_less_shoulder_push_brings_a_benchmark_fall_up(monkeypatch):
-    """Benchmark fall type 3 seed 3019 (``--seed 0``, ends on the right side): with type 3's
-    own roll (the lower arm pushes through 40 deg of shoulder roll instead of 95) the robot
-    lies straight on its back and stands within 4 s; with the common roll it lies twisted, its
-    sit-ups tip back over the shoulders and it stays down."""
+    """Fall type 3 seed 3050 (ends on the right side; ``scripts/get_up/pin_search.py --case
+    type3_roll``): with type 3's own roll (the lower arm pushes through 40 deg of shoulder roll
+    instead of 95) the robot stands within 4 s (3.38 s); with the common roll it stays down.
+    (Seed 3019 until session 20's bounce contacts: there the common roll left the robot
+    twisted and its sit-ups tipped back over the shoulders.)"""
     own = sequence_for(get_up_module.ROLL_FROM_LEFT, 3)
     assert own.name == "roll_left_to_back_type3"
     assert (
         own.frames[1].joints["laj2"] < sequence_for("roll_left_to_back", 0).frames[1].joints["laj2"]
     )
-    assert run_trial(3, "right", 3019).succeeded
+    assert run_trial(3, "right", 3050).succeeded
     _package_without(monkeypatch, "roll_left_to_back_type3")
-    assert not run_trial(3, "right", 3019).succeeded
+    assert not run_trial(3, "right", 3050).succeeded
 
 
-@pytest.mark.parametrize(("robot_type", "seed"), [(1, 1504), (2, 2504), (3, 3516), (4, 4516)])
+@pytest.mark.parametrize(("robot_type", "seed"), [(1, 1504), (2, 2015), (3, 3011), (4, 4001)])
 def test_front_get_up_with_the_knees_folded_less_brings_a_benchmark_fall_up(
     monkeypatch, robot_type, seed
 ):
-    """Benchmark falls of types 1-4 (``--seed 500``, ending on the front): with the knees
-    folded to -80 / -90 / -100 deg in the second frame the robot stands within 4 s; with the
-    fold of type 0 (-116.7) the torso tips over the knees (or the squat back) and it stays
-    down (measured before EARLY_STAND_DEG, which brings type 2's retry up in time)."""
+    """Falls of types 1-4 ending on the front (type 1 of ``--seed 500``, the others from
+    ``scripts/get_up/pin_search.py --case front_fold_T`` since session 20's bounce contacts;
+    before, 2504 / 3516 / 4516): with the knees folded to -80 / -90 / -100 deg in the second
+    frame the robot stands within 4 s; with the fold of type 0 (-116.7) the torso tips over
+    the knees (or the squat back) and it stays down (measured before EARLY_STAND_DEG, which
+    brings type 2's retry up in time)."""
     own = sequence_for("get_up_front", robot_type)
     assert own.frames[1].joints["llj4"] > sequence_for("get_up_front", 0).frames[1].joints["llj4"]
     assert run_trial(robot_type, "front", seed).succeeded
@@ -594,19 +598,20 @@ def _front_fold(monkeypatch, robot_type: int, knee_deg: float) -> None:
 
 
 def test_a_late_retry_that_has_risen_counts_before_its_last_hold(monkeypatch):
-    """Benchmark fall type 3 seed 3504 (front, retried from the back at 1.6 s): the legs are
-    at the stand at 4 s, when the last frame's full time has not passed yet; reported once
-    the legs are near the stand (EARLY_STAND_DEG) it counts, waiting for the hold it does not.
-    Played without type 3's front retry version (with it this fall's retry rises from the
-    front and stands within 4 s either way: 3.66 / 3.80 s)."""
+    """Fall type 3 seed 3041 (front; ``scripts/get_up/pin_search.py --case late_retry``;
+    seed 3504, retried from the back at 1.6 s, until session 20's bounce contacts): the legs
+    are near the stand at 4.00 s, when the last frame's full time has not passed yet; reported
+    once the legs are near the stand (EARLY_STAND_DEG) it counts, waiting for the hold it
+    does not. Played without type 3's front retry version."""
     _package_without(monkeypatch, "get_up_front_retry_type3")
-    assert run_trial(3, "front", 3504).succeeded
+    assert run_trial(3, "front", 3041).succeeded
     monkeypatch.setattr(get_up_module, "EARLY_STAND_DEG", None)
-    assert not run_trial(3, "front", 3504).succeeded
+    assert not run_trial(3, "front", 3041).succeeded
 
 
 def test_type1_back_get_up_stands_without_self_collision(monkeypatch):
-    """Benchmark fall type 1 seed 1001 (``--seed 0``, ends on the back) under the real server's
+    """Fall type 1 seed 1002 (ends on the back; seed 1001 until session 20's bounce contacts,
+    which bring 1001 down with self-collision) under the real server's
     rule that a robot's parts never touch each other (``benchmarks/physics.py --variant
     noself``): with type 1's back get-up of session 11 (arms straight back at once, a slower
     sit-up with less hip flexion) it stands within 4 s; with the one before (arms back only
@@ -614,9 +619,9 @@ def test_type1_back_get_up_stands_without_self_collision(monkeypatch):
     down. With self-collision both stand."""
     from benchmarks.physics import VARIANTS
 
-    assert run_trial(1, "back", 1001).succeeded
+    assert run_trial(1, "back", 1002).succeeded
     with VARIANTS["noself"]():
-        assert run_trial(1, "back", 1001).succeeded
+        assert run_trial(1, "back", 1002).succeeded
         name = sequence_for("get_up_back", 1).name
         entry = raw_entries()[name]
         frames = entry["frames"]
@@ -627,8 +632,8 @@ def test_type1_back_get_up_stands_without_self_collision(monkeypatch):
         frames[2].update(duration=0.3)
         old = candidate_sequences(name, entry)
         monkeypatch.setattr(get_up_module, "default_sequences", lambda: old)
-        assert not run_trial(1, "back", 1001).succeeded
-    assert run_trial(1, "back", 1001).succeeded
+        assert not run_trial(1, "back", 1002).succeeded
+    assert run_trial(1, "back", 1002).succeeded
 
 
 def test_the_search_scores_each_contact_rule_on_its_own_bank():
@@ -793,15 +798,16 @@ def _roll_upper_arm(monkeypatch, robot_type: int, shoulder_deg: float) -> None:
     monkeypatch.setattr(get_up_module, "default_sequences", lambda: rolled)
 
 
-@pytest.mark.parametrize(("robot_type", "seed"), [(4, 4012), (3, 8004)])
+@pytest.mark.parametrize(("robot_type", "seed"), [(4, 4131), (3, 3004)])
 def test_the_side_roll_with_the_upper_arm_swung_back_less_brings_a_benchmark_fall_up(
     monkeypatch, robot_type, seed
 ):
-    """Benchmark falls ending on the right side (type 4 seed 4012 of ``--seed 0``, lying half
-    on its front; type 3 seed 8004 of ``--seed 5000``): with the upper arm swung back to -90
-    deg in the roll's second frame the robot stands within 4 s; swung back to -120 (before
-    session 13) the first rolled onto its front and the second came to lie twisted, and both
-    stayed down."""
+    """Falls ending on the right side (type 4 seed 4131, type 3 seed 3004:
+    ``scripts/get_up/pin_search.py --case roll_upper_arm_T``; until session 20's bounce
+    contacts type 4 seed 4012, lying half on its front, and type 3 seed 8004): with the upper
+    arm swung back to -90 deg in the roll's second frame the robot stands within 4 s; swung
+    back to -120 (before session 13; there the first rolled onto its front and the second came
+    to lie twisted) both stay down."""
     assert sequence_for(get_up_module.ROLL_FROM_LEFT, robot_type).frames[1].joints["raj1"] == -90
     assert run_trial(robot_type, "front", seed).succeeded
     _roll_upper_arm(monkeypatch, robot_type, -120.0)
