@@ -622,18 +622,24 @@ def test_type1_back_get_up_stands_without_self_collision(monkeypatch):
     assert run_trial(1, "back", 1002).succeeded
     with VARIANTS["noself"]():
         assert run_trial(1, "back", 1002).succeeded
-        name = sequence_for("get_up_back", 1).name
-        entry = raw_entries()[name]
-        frames = entry["frames"]
-        frames[0].update(duration=0.2)
-        frames[0]["joints"].update(laj1=-70.7, raj1=-70.7)
-        frames[1].update(duration=0.53)
-        frames[1]["joints"].update(llj3=100.0, rlj3=100.0)
-        frames[2].update(duration=0.3)
-        old = candidate_sequences(name, entry)
-        monkeypatch.setattr(get_up_module, "default_sequences", lambda: old)
+        _type1_back_before_session11(monkeypatch)
         assert not run_trial(1, "back", 1002).succeeded
     assert run_trial(1, "back", 1002).succeeded
+
+
+def _type1_back_before_session11(monkeypatch) -> None:
+    """The skill plays type 1's back get-up as before session 11: arms back only during the
+    sit-up (0.2 s, shoulder -70.7), a faster sit-up (0.53 s) with more hip flexion (100)."""
+    name = sequence_for("get_up_back", 1).name
+    entry = raw_entries()[name]
+    frames = entry["frames"]
+    frames[0].update(duration=0.2)
+    frames[0]["joints"].update(laj1=-70.7, raj1=-70.7)
+    frames[1].update(duration=0.53)
+    frames[1]["joints"].update(llj3=100.0, rlj3=100.0)
+    frames[2].update(duration=0.3)
+    old = candidate_sequences(name, entry)
+    monkeypatch.setattr(get_up_module, "default_sequences", lambda: old)
 
 
 def test_the_search_scores_each_contact_rule_on_its_own_bank():

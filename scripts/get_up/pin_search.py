@@ -68,19 +68,6 @@ def _front_fold(robot_type: int) -> Variant:
     return _both(_set("EARLY_STAND_DEG", None), lambda mp: pins._front_fold(mp, robot_type, -116.7))
 
 
-def _type1_old_back(mp: pytest.MonkeyPatch) -> None:
-    name = pins.sequence_for("get_up_back", 1).name
-    entry = pins.raw_entries()[name]
-    frames = entry["frames"]
-    frames[0].update(duration=0.2)
-    frames[0]["joints"].update(laj1=-70.7, raj1=-70.7)
-    frames[1].update(duration=0.53)
-    frames[1]["joints"].update(llj3=100.0, rlj3=100.0)
-    frames[2].update(duration=0.3)
-    old = pins.candidate_sequences(name, entry)
-    mp.setattr(get_up_module, "default_sequences", lambda: old)
-
-
 CASES: dict[str, Case] = {
     "type0_back_crouch": Case(0, "back", "back", None, _without("get_up_back_type0")),
     "front_abort_horizon": Case(2, "front", "front", None, _set("FRONT_ABORT_HORIZON_S", 0.0)),
@@ -93,7 +80,9 @@ CASES: dict[str, Case] = {
         _without("get_up_front_retry_type3"),
         _set("EARLY_STAND_DEG", None),
     ),
-    "type1_back_noself": Case(1, "back", "back", None, _type1_old_back, physics="noself"),
+    "type1_back_noself": Case(
+        1, "back", "back", None, pins._type1_back_before_session11, physics="noself"
+    ),
     **{
         f"roll_upper_arm_{t}": Case(
             t, "front", "right", None, lambda mp, t=t: pins._roll_upper_arm(mp, t, -120.0)
