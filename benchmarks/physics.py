@@ -62,6 +62,7 @@ import sim.physics
 import sim.robot
 import sim.session
 from sim.contact_models import (
+    DEFAULT_CONTACT_MODEL,
     ContactPhysics,
     bounce_contact,
     soft_contact,
@@ -247,17 +248,27 @@ def _constant(
 def _contact(
     make: Callable[[ContactPhysics], ContactPhysics],
 ) -> Callable[[], contextlib.AbstractContextManager]:
-    """A variant whose contacts are ``make(today's contacts)`` (``sim.contact_models``), set as
-    the module defaults that every world, robot, field and ball built inside it reads."""
+    """A variant whose contacts are ``make(the soft contacts)`` (``sim.contact_models``), set
+    as the module defaults that every world, robot, field and ball built inside it reads, and
+    as what every session built inside it plays whatever contact model its config names.
+
+    Why both: worlds built outside a session read the module defaults; a session builds its
+    contacts from its model (the default ``bounce``) on top of those defaults, which would
+    apply the bounces twice (the ball's restitution divided again: ball-ground above 1)."""
 
     @contextlib.contextmanager
     def apply() -> Iterator[None]:
         physics = make(soft_contact())
+
+        def session_contacts(model: str = "", self_collision: bool = True) -> ContactPhysics:
+            return with_self_collision(physics, self_collision)
+
         patches = [
             _constant(sim.robot, "DEFAULT_PHYSICS", physics.robot),
             _constant(sim.field, "DEFAULT_GROUND", physics.ground),
             _constant(sim.field, "DEFAULT_BALL", physics.ball),
             _constant(sim.field, "POST_RESTITUTION", physics.post_restitution),
+            _constant(sim.session, "contact_physics", session_contacts),
         ]
         if physics.min_bounce_speed is not None:
             patches.append(_engine_parameter(restitutionVelocityThreshold=physics.min_bounce_speed))
@@ -328,7 +339,7 @@ def _session_without_self_collision() -> Iterator[None]:
     otherwise put the contacts back)."""
     original = sim.session.contact_physics
 
-    def without(model: str = "soft", self_collision: bool = True) -> ContactPhysics:
+    def without(model: str = DEFAULT_CONTACT_MODEL, self_collision: bool = True) -> ContactPhysics:
         return original(model, False)
 
     sim.session.contact_physics = without
@@ -382,8 +393,13 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "strike": _strike(bounce=True),
     "rigid": _strike(bounce=False),
     # the real server's rule: no contacts between a robot's own parts (disableInnerCollision)
-    "noself": _together(_contact(_without_self_collision), _session_without_self_collision),
+    "noself": _together(
+        _contact(lambda p: _without_self_collision(bounce_contact(p))),
+        _session_without_self_collision,
+    ),
     "strike_feet": _contact(_strike_feet),
+    # the physics tuned before session 20 (the foot pushes the ball), and today's default
+    "soft": _contact(lambda physics: physics),
     "bounce": _contact(bounce_contact),
     # robot-ground and robot-robot restitution 1e-4 instead of 0.01 (foot-ball still 0.8)
     "bounce_r001": _contact(lambda p: bounce_contact(p, 0.01)),

@@ -14,9 +14,11 @@ import pytest
 import sim.field
 import sim.robot
 from benchmarks.physics import VARIANTS, idle_stance
+from sim.contact_models import contact_physics
 from sim.field import BallPhysics, GroundPhysics, foot_strike_speed
 from sim.physics import PhysicsWorld
 from sim.robot import RobotPhysics, SimRobot
+from sim.session import Session, SessionConfig
 
 FOOT_SPEED = 2.0
 
@@ -130,3 +132,23 @@ def test_strike_feet_keeps_other_links_soft_and_feet_striking() -> None:
         assert "contactStiffness" in physics.collider_dynamics("lthigh")
         assert "contactStiffness" not in physics.collider_dynamics("rfoot")
     assert foot_ratio == pytest.approx(1.8, abs=0.1)
+
+
+@pytest.mark.parametrize(
+    ("variant", "model"),
+    [("current", "bounce"), ("bounce", "bounce"), ("soft", "soft"), ("strike", "strike")],
+)
+def test_a_session_inside_a_contact_variant_plays_exactly_its_contacts(variant, model) -> None:
+    """A session plays the variant's contacts, not its configured model on top of them (with
+    ``bounce`` the default, the bounces applied twice put ball-ground restitution at 8)."""
+    with VARIANTS[variant]():
+        session = Session(SessionConfig(beam_noise=False))
+        try:
+            contact = session.contact
+        finally:
+            session.world.close()
+    assert contact == contact_physics(model)
+    ball_ground = contact.ball.restitution * contact.ground.restitution
+    assert ball_ground == pytest.approx(
+        0.8 if model != "soft" else sim.field.DEFAULT_BALL.restitution
+    )
