@@ -1,13 +1,12 @@
 """The kick: the packaged motion, strength scaling, mirroring, and kicks in the simulator.
 
-The issue asks for at least 3 m at full strength; the motion reaches 2.98/3.10 m (left/right)
-from a stand one cycle after rising, 2.67 m median over six start states
-(``benchmarks/kick.py --seeds 6``); after walking to the ball the long kicks (support arm
-raised) reach 3.0-3.2 m median over layout seeds (session 11). Third-round
-measurements (``benchmarks/kick.py --impact``) say why: the ball leaves at about the foot's
-top speed (2.8-3.1 m/s; the knee at its 352 deg/s cap), so with these joint caps the kick
-cannot reach much more than 3 m. The trials also assert that the robot stays up and the ball
-leaves forwards off the kicking foot's side.
+The issue asks for at least 3 m at full strength. On the soft contacts of sessions 1-19 the
+plain motion reached 2.98 / 3.10 m (left / right) from a stand, the foot pushing the ball at its
+own top speed (``benchmarks/kick.py --impact``: about 3 m/s with the joint caps). Since session
+20 the ball bounces off the foot as on the real server: the plain stand kicks go 2.03 / 2.62 m,
+the long kicks searched on these contacts 5.91 / 4.57 m from a stand, and after walking to the
+ball 4.4-6.1 m median over layout seeds asked for "long" (left 6.4-6.8 m). The trials also
+assert that the robot stays up and the ball leaves forwards off the kicking foot's side.
 """
 
 from __future__ import annotations
@@ -222,15 +221,17 @@ def test_packaged_kick_is_calibrated_with_increasing_distances():
 
 def test_basic_kicks_pick_strengths_from_each_feet_own_table_after_the_approach():
     """After the approach each foot has its own table (measured on basic kicks, not stand
-    kicks): the right kick is spent near 2.55 m while the left reaches about 3 m, so the right
-    foot needs more strength for the same distance."""
+    kicks): on the bounce contacts (session 20) the right kick is spent near 2.36 m, the left
+    near 2.51 m, so the right foot needs more strength for the same distance; beyond its table a
+    request asks for the table's top strength (``basic_kick`` plays the long kick there)."""
     left = kick_motion(0, None, "left", aligned=True)
     right = kick_motion(0, None, "right", aligned=True)
     stand = kick_motion(0)
     assert left.distances != stand.distances and right.distances != stand.distances
     assert left.distance_range_m[1] > right.distance_range_m[1]
     assert right.strength_for(2.3) > left.strength_for(2.3)
-    assert left.strength_for(3.0) == right.strength_for(3.0) == 1.0
+    assert left.strength_for(3.0) == left.distances[-1][0]
+    assert right.strength_for(3.0) == right.distances[-1][0]
 
 
 def test_a_distance_table_that_does_not_increase_is_refused():
