@@ -5,8 +5,9 @@ retried at once, without waiting for the body to settle when it lies flat), the 
 (abandoned for a back get-up as soon as the robot tips back over or lies on its back; types 1-4
 keep the arms down while the torso comes up) and the side roll (the lower arm levers the chest
 up) bring most robots back on their feet within 4 s (``benchmarks/get_up.py`` on the bounce
-contacts of session 20: 90 of 100, ``--seed 500`` 91, ``--seed 1000`` 85, ``--seed 2000`` 87). Type 4's rise from the
-squat has a hip-pitch balance correction from the IMU's torso pitch (``RISE_BALANCE``).
+contacts of session 20: 90 of 100, ``--seed 500`` 91, ``--seed 1000`` 85, ``--seed 2000``
+87). Type 4's rise from the squat has a hip-pitch balance correction from the IMU's torso
+pitch (``RISE_BALANCE``).
 The trial test below asks for both sides; for type 3 it is a strict xfail (its back fall of
 that seed stays down) so that it turns red the day it passes.
 The search that tunes the sequences (``learning/get_up_search.py``) is checked here for what it
