@@ -21,7 +21,9 @@ import pytest
 
 from behaviors.basic_kick import (
     LONG,
+    REACH_PREFERENCE_M,
     BasicKickSkill,
+    choose_foot,
     detour_point,
     expected_ball_ego,
     kick_spot,
@@ -178,6 +180,20 @@ def test_the_long_kicks_meet_the_ball_with_the_foot_flat_at_their_own_ball_spot(
         assert motion_for(0, None, foot, LONG) == (long, True)
         assert motion_for(0, None, foot, 0.5 * short.distance_range_m[1]) == (short, False)
         assert expected_ball_ego(0, foot, long, LONG) != expected_ball_ego(0, foot, short)
+
+
+def test_the_foot_whose_kick_reaches_wins_within_a_metre_of_walking():
+    """Each foot's kick reaches its own distance (on the bounce contacts the left long kick
+    about 6.5 m, the right about 4.3 m): the nearer spot wins while both reach the distance,
+    the reaching foot wins within ``REACH_PREFERENCE_M`` of extra walking."""
+    reach = {"left": 6.47, "right": 4.3}
+    near_right = {"left": 1.0, "right": 0.5}
+    assert choose_foot(near_right, reach, 3.5) == "right"  # both reach
+    assert choose_foot(near_right, reach, 5.0) == "left"
+    assert choose_foot(near_right, reach, LONG) == "left"
+    far_left = {"left": 0.5 + REACH_PREFERENCE_M + 0.1, "right": 0.5}
+    assert choose_foot(far_left, reach, LONG) == "right"
+    assert choose_foot({"left": 0.5, "right": 1.0}, {"left": 4.0, "right": 4.0}, LONG) == "left"
 
 
 def test_basic_kick_plays_the_long_motion_only_beyond_the_plain_table():
