@@ -10,9 +10,12 @@ Phases:
 
 1. ``approach``: the ``walk`` skill to the spot from which the chosen foot lies behind the
    ball on the line ball -> target, facing the target. The foot is the one whose spot is
-   nearer, chosen anew until the robot is close to the ball. Where the ball should lie ahead
-   of the toe depends on the distance asked for when the kick is calibrated by its ball gap
-   (:func:`ball_gap_for`): a shorter kick lines the ball up further ahead.
+   nearer, unless only the other foot's kick reaches the distance (:func:`choose_foot`),
+   chosen anew until the robot is close to the ball. The spot is that of the motion the kick
+   will play (:func:`motion_for`: the short one, or the long one beyond its table). Where the
+   ball should lie ahead of the toe depends on the distance asked for when the kick is
+   calibrated by its ball gap (:func:`ball_gap_for`): a shorter kick lines the ball up further
+   ahead.
 2. ``settle``: stand still (``walk_velocity`` 0, then the stand pose), then measure where the
    ball lies against where the kick expects it (``ball_gap_m``, ``ball_side_m`` of the kick,
    relative to the kicking foot in the stand pose) from the mean of the ball's torso-relative
@@ -25,11 +28,10 @@ Phases:
 4. ``head_up``: the head level in the stand for at least ``HEAD_UP_CYCLES``, then until the
    torso has stopped swaying (:class:`CalmWatch`, at most ``CALM_MAX_CYCLES`` in all).
 5. ``kick``: the ``kick`` skill with the strength that the kick's calibration table gives for
-   the distance (full strength for a kick calibrated by its ball gap: session 12's candidate
-   against the slow swings' falls, not packaged, see the end of ``kicks.yaml``); beyond the
-   table's reach, and for ``"long"``, the kick's long version where the file has one
-   (:func:`wants_long`; each foot's long kick raises its support arm and goes further at full
-   strength).
+   the distance (full strength for a kick calibrated by its ball gap); beyond the table's
+   reach, and for ``"long"``, the kick's long version where the file has one
+   (:func:`wants_long`; since session 20 the long kicks, searched on the bounce contacts, are
+   calibrated by their ball gap: the left one goes about 3-6.5 m, the right 3.5-4.3 m).
 
 Once the kick has started it plays to its end. The head
 looks down while approaching: a ball at the toes lies about 65 deg below the horizon, outside a
