@@ -8,15 +8,16 @@ base:-:1.5 base:-:3 cand:/tmp/cand.yaml:1.5`` (``label:kicks file or -:distance`
 line per trial and variant (distance, direction error, fall stage) and per variant the median
 distance, median |distance - asked|, falls before / after contact and misses.
 
-Why: the approach, the alignment and the choice of foot do not depend on the kick motion or
-the distance asked (every aligned motion wants the ball at the same spot), so a change to the
-kick needs the approach only once per layout: a screen of V variants costs one approach and
-V kicks per trial instead of V whole trials. The replay is not trial for trial the benchmark's
-(compare variants with the ``base`` variant, not with ``benchmarks/kick.py``): layout seed 0's
-trials 0 and 1 asked for 3 m go 3.19 / 3.58 m here and 3.71 / 2.94 m in the benchmark, and the
-packaged kicks fell 18 / 16 times here against 20 / 21 in the benchmark asked for 1.5 / 2.0 m;
-something of the agent's state outside its world model and behaviours (or the restore) differs
-after the saved moment, and the physics is chaotic enough to amplify it."""
+Why: the approach, the alignment and the choice of foot do not depend on the kick motion's frames
+(since session 20 they depend on the distance asked, which picks the motion and its ball spot:
+``--approach``), so a change to the kick needs the approach only once per layout: a screen of V
+variants costs one approach and V kicks per trial instead of V whole trials. The replay is not
+trial for trial the benchmark's (compare variants with the ``base`` variant, not with
+``benchmarks/kick.py``): layout seed 0's trials 0 and 1 asked for 3 m go 3.19 / 3.58 m here and
+3.71 / 2.94 m in the benchmark, and the packaged kicks fell 18 / 16 times here against 20 / 21 in
+the benchmark asked for 1.5 / 2.0 m; something of the agent's state outside its world model and
+behaviours (or the restore) differs after the saved moment, and the physics is chaotic enough to
+amplify it."""
 
 from __future__ import annotations
 
@@ -60,7 +61,13 @@ def parse_variant(text: str) -> Variant:
     return Variant(label, motions, asked if asked == "long" or asked[0] == "s" else float(asked))
 
 
-def play(driver: LocalAgent, variant: Variant, target: tuple[float, float], direction: float):
+def play(
+    driver: LocalAgent,
+    variant: Variant,
+    target: tuple[float, float],
+    direction: float,
+    approach: float | str = 3.0,
+):
     """Play the saved wait and kick with ``variant``'s motions and distance; (distance m,
     direction error deg, fall stage or None, kicked)."""
     skill = driver.behavior.skill("basic_kick")
@@ -79,7 +86,7 @@ def play(driver: LocalAgent, variant: Variant, target: tuple[float, float], dire
     contact, stage, finished, cycles = False, None, False, 0
     while not finished and cycles < BASIC_KICK_FINISH_CYCLES + 100:
         before = session.ball.position()
-        finished = driver.run("basic_kick", *target, 3.0)
+        finished = driver.run("basic_kick", *target, approach)
         cycles += 1
         if not contact and session.ball.speed() > MOVING_SPEED:
             contact, start = True, before
@@ -100,7 +107,14 @@ def main() -> None:
     parser.add_argument("--layout-seeds", type=int, nargs="+", default=[0, 1])
     parser.add_argument("--trials", type=int, default=20)
     parser.add_argument("--variants", nargs="+", required=True)
+    parser.add_argument(
+        "--approach",
+        default="3.0",
+        help="distance (m or long) the shared approach asks for: since session 20 each motion "
+        "has its own ball spot, so bank long-kick variants with --approach long",
+    )
     args = parser.parse_args()
+    approach: float | str = args.approach if args.approach == "long" else float(args.approach)
     variants = [parse_variant(v) for v in args.variants]
     rows: dict[str, list[tuple[float, float, str | None, bool]]] = {v.label: [] for v in variants}
     for seed in args.layout_seeds:
@@ -117,7 +131,7 @@ def main() -> None:
                 target = (bx + 10.0 * math.cos(rad), by + 10.0 * math.sin(rad))
                 cycles, fell = 0, False
                 while skill.phase != "head_up" and cycles < BASIC_KICK_TIMEOUT_CYCLES:
-                    driver.run("basic_kick", *target, 3.0)
+                    driver.run("basic_kick", *target, approach)
                     cycles += 1
                     fell |= driver.robot.has_fallen()
                 if skill.phase != "head_up" or fell:
@@ -130,7 +144,7 @@ def main() -> None:
                 for v in variants:
                     session.restore_state(snapshot)
                     driver.world, driver.behavior = copy.deepcopy(saved)
-                    result = play(driver, v, target, direction)
+                    result = play(driver, v, target, direction, approach)
                     rows[v.label].append(result)
                     d, e, stage, kicked = result
                     print(
