@@ -288,6 +288,18 @@ def kick_spot(
     return (ball[0] - c * fx + s * fy, ball[1] - s * fx - c * fy, math.degrees(heading))
 
 
+def aimed_target(
+    ball: tuple[float, float], target: tuple[float, float], aim_deg: float
+) -> tuple[float, float]:
+    """``target`` turned by ``-aim_deg`` about the ball: where to face so that a kick whose
+    ball goes ``aim_deg`` to the left of the robot's facing (:attr:`KickMotion.aim_deg`) goes to
+    ``target``."""
+    angle = math.radians(-aim_deg)
+    c, s = math.cos(angle), math.sin(angle)
+    dx, dy = target[0] - ball[0], target[1] - ball[1]
+    return (ball[0] + c * dx - s * dy, ball[1] + s * dx + c * dy)
+
+
 def detour_point(
     ball: tuple[float, float],
     spot: tuple[float, float, float],
@@ -387,9 +399,11 @@ class BasicKickSkill(Skill):
         ):
             self.foot = self._choose_foot(context, (target_x, target_y))
         motion, _ = motion_for(world.robot.robot_type, self.motions, self.foot, distance)
-        alignment = self._alignment(context, motion, (target_x, target_y))
+        aim = motion.aim_deg if self.foot == "left" else -motion.aim_deg
+        target = aimed_target(world.ball.position[:2], (target_x, target_y), aim)
+        alignment = self._alignment(context, motion, target)
         if self.phase in ("approach", "back_off"):
-            self._approach(context, motion, (target_x, target_y))
+            self._approach(context, motion, target)
         elif self.phase == "shuffle":
             self._step_shuffle(context)
         else:

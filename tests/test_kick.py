@@ -23,6 +23,7 @@ from behaviors.basic_kick import (
     LONG,
     REACH_PREFERENCE_M,
     BasicKickSkill,
+    aimed_target,
     choose_foot,
     detour_point,
     expected_ball_ego,
@@ -194,6 +195,19 @@ def test_the_foot_whose_kick_reaches_wins_within_a_metre_of_walking():
     far_left = {"left": 0.5 + REACH_PREFERENCE_M + 0.1, "right": 0.5}
     assert choose_foot(far_left, reach, LONG) == "right"
     assert choose_foot({"left": 0.5, "right": 1.0}, {"left": 4.0, "right": 4.0}, LONG) == "left"
+
+
+def test_a_kick_that_goes_left_is_aimed_right_of_the_target():
+    """``aim_deg``: the left long kick's ball goes about 10 deg left of the robot's facing, so
+    ``basic_kick`` faces the target turned 10 deg right about the ball; the right foot plays the
+    motion mirrored, so its aim turns the other way (``basic_kick`` negates it)."""
+    turned = aimed_target((1.0, 2.0), (11.0, 2.0), 10.0)
+    assert math.degrees(math.atan2(turned[1] - 2.0, turned[0] - 1.0)) == pytest.approx(-10.0)
+    assert math.dist(turned, (1.0, 2.0)) == pytest.approx(10.0)
+    assert aimed_target((1.0, 2.0), (11.0, 2.0), 0.0) == pytest.approx((11.0, 2.0))
+    long = kick_motion(0, None, "left", aligned=True, long=True)
+    assert long.aim_deg > 0.0
+    assert kick_motion(0, None, "left", aligned=True).aim_deg == 0.0
 
 
 def test_basic_kick_plays_the_long_motion_only_beyond_the_plain_table():
