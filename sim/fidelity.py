@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from sim.contact_models import ContactPhysics
 from sim.physics import PhysicsWorld
 from sim.robot import RobotPhysics, SimRobot
 
@@ -119,12 +120,15 @@ def replay(
     substeps: int = 2,
     build_ground: Callable[[PhysicsWorld], object] | None = None,
 ) -> Comparison:
-    """Run ``recording``'s speeds on a fresh stand-in robot and compare with the real torso."""
-    world = PhysicsWorld(substeps=substeps)
+    """Run ``recording``'s speeds on a fresh stand-in robot and compare with the real torso.
+
+    The robot, ground and bounce threshold are those a default session plays
+    (:func:`server_contacts`) unless ``physics`` or ``build_ground`` replace them."""
+    contact = server_contacts()
+    world = PhysicsWorld(substeps=substeps, min_bounce_speed=contact.min_bounce_speed)
     try:
-        _ground(world, build_ground)
-        kwargs = {"physics": physics} if physics is not None else {}
-        robot = SimRobot(world, recording.robot_type, **kwargs)
+        _ground(world, build_ground, contact)
+        robot = SimRobot(world, recording.robot_type, physics=physics or contact.robot)
         start = recording.torso[0]
         yaw = math.degrees(math.atan2(start[1, 1], start[0, 1]))
         robot.place(float(start[0, 3]), float(start[1, 3]), 0.4, yaw)
@@ -155,7 +159,22 @@ def replay(
     )
 
 
-def _ground(world: PhysicsWorld, build_ground: Callable[[PhysicsWorld], object] | None) -> None:
+def server_contacts() -> ContactPhysics:
+    """The contacts of a session built with the default ``SessionConfig`` (the default contact
+    model, since session 20 ``bounce``), looked up through ``sim.session`` at call time so that
+    a benchmark variant (``benchmarks/physics.py``) that sets what sessions play sets it here
+    too."""
+    import sim.session
+
+    config = sim.session.SessionConfig()
+    return sim.session.contact_physics(config.contact, config.self_collision)
+
+
+def _ground(
+    world: PhysicsWorld,
+    build_ground: Callable[[PhysicsWorld], object] | None,
+    contact: ContactPhysics,
+) -> None:
     if build_ground is not None:
         build_ground(world)
         return
@@ -167,4 +186,4 @@ def _ground(world: PhysicsWorld, build_ground: Callable[[PhysicsWorld], object] 
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=world.client)
         pybullet.createMultiBody(0, plane, physicsClientId=world.client)
         return
-    build_field(world)
+    build_field(world, contact.ground, contact.post_restitution)
