@@ -19,6 +19,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from sim.fidelity import server_contacts
 from sim.field import DEFAULT_SUBSTEPS, Ball, build_field, foot_strike_speed
 from sim.physics import CYCLE_SECONDS, PhysicsWorld
 from world.field_geometry import BALL_RADIUS
@@ -32,11 +33,13 @@ ROLL_SECONDS = 10.0
 
 
 def roll(speed: float, substeps: int = DEFAULT_SUBSTEPS) -> tuple[float, float]:
-    """(total roll distance, time after which the ball stays within 1 mm of its rest point)."""
-    world = PhysicsWorld(substeps=substeps)
+    """(total roll distance, time after which the ball stays within 1 mm of its rest point), on
+    the contacts a default session plays (:func:`sim.fidelity.server_contacts`)."""
+    contact = server_contacts()
+    world = PhysicsWorld(substeps=substeps, min_bounce_speed=contact.min_bounce_speed)
     try:
-        build_field(world)
-        ball = Ball.create(world, (0.0, 0.0, BALL_RADIUS))
+        build_field(world, contact.ground, contact.post_restitution)
+        ball = Ball.create(world, (0.0, 0.0, BALL_RADIUS), contact.ball)
         ball.place((0.0, 0.0, BALL_RADIUS), (speed, 0.0, 0.0))
         xs = []
         for _ in range(round(ROLL_SECONDS / CYCLE_SECONDS)):
