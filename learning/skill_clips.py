@@ -108,7 +108,7 @@ def get_up_clip(agent: LocalAgent) -> Iterator[None]:
 CLIPS: dict[str, Clip] = {
     "walk": Clip(walk_clip, 4.4, "omnidirectional walk", camera_distance=2.2),
     "kick": Clip(kick_clip, 2.5, "keyframe kick, left foot"),
-    "basic_kick": Clip(basic_kick_clip, 12.0, "approach, align, kick", camera_distance=2.2),
+    "basic_kick": Clip(basic_kick_clip, 17.0, "approach, align, kick", camera_distance=2.2),
     "dfdl": Clip(_dribble_clip("dfdl", "left"), 4.0, "double-footed dribble", 2.2),
     "lfdl": Clip(_dribble_clip("lfdl", "left"), 4.0, "left-footed dribble", 2.2),
     "lfdl_right": Clip(_dribble_clip("lfdl", "right"), 4.0, "LFDL mirrored", 2.2),
