@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, replace
 
@@ -58,6 +59,19 @@ def test_ball_rolled_ahead_speeds_up_and_out_of_reach_only_catches_up():
     assert not ball_within_reach(gone, GAIT)
     far_vx, _, _ = dribble_velocity(gone, GAIT)
     assert far_vx == pytest.approx(min(GAIT.max_speed, GAIT.ahead_gain * (gone.ball_x - 0.2)))
+
+
+def test_catch_up_ahead_slows_for_a_near_ball_and_keeps_the_ball_place():
+    """``catch_up_ahead`` (LFDL since session 20): the catch-up term aims for a ball that far
+    ahead, so a ball at ``ball_ahead`` slows the robot by ``ahead_gain`` per metre short of it,
+    while the place the ball is lined up at (and walked round to) stays ``ball_ahead``."""
+    slowing = dataclasses.replace(GAIT, ahead_gain=1.0, catch_up_ahead=GAIT.ball_ahead + 0.15)
+    plain, _, _ = dribble_velocity(_inputs(GAIT.ball_ahead, GAIT.ball_side), GAIT)
+    slowed, _, _ = dribble_velocity(_inputs(GAIT.ball_ahead, GAIT.ball_side), slowing)
+    assert slowed == pytest.approx(max(plain - 0.15, slowing.min_speed))
+    assert dataclasses.replace(GAIT, catch_up_ahead=None) == GAIT
+    assert dribble_gait("lfdl", 0).catch_up_ahead == pytest.approx(0.4)
+    assert dribble_gait("lfdl", 0).ball_ahead < dribble_gait("lfdl", 0).catch_up_ahead
 
 
 def test_ball_behind_never_walks_on_over_it():
