@@ -398,7 +398,7 @@ class BasicKickSkill(Skill):
             and world.distance_to(world.ball.position) > CHOOSE_FOOT_DISTANCE_M
         ):
             self.foot = self._choose_foot(context, (target_x, target_y))
-        motion, _ = motion_for(world.robot.robot_type, self.motions, self.foot, distance)
+        motion, long = motion_for(world.robot.robot_type, self.motions, self.foot, distance)
         aim = motion.aim_deg if self.foot == "left" else -motion.aim_deg
         target = aimed_target(world.ball.position[:2], (target_x, target_y), aim)
         alignment = self._alignment(context, motion, target)
@@ -407,7 +407,7 @@ class BasicKickSkill(Skill):
         elif self.phase == "shuffle":
             self._step_shuffle(context)
         else:
-            self._settle(context, alignment, motion, distance)
+            self._settle(context, alignment, motion, long, distance)
         self._look_down(context)
         return False
 
@@ -440,10 +440,11 @@ class BasicKickSkill(Skill):
         context: SkillContext,
         alignment: Alignment,
         motion: KickMotion,
+        long: bool,
         distance: float | str,
     ) -> None:
-        """Stand still, take the stand pose, then kick if the ball lies where the kick wants it,
-        else walk again."""
+        """Stand still, take the stand pose, then kick (``motion``, the long version when
+        ``long``) if the ball lies where the kick wants it, else walk again."""
         stopping = self._settled == 0
         if stopping and not context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0):
             return
@@ -457,8 +458,7 @@ class BasicKickSkill(Skill):
         alignment = self._seen_alignment(alignment, context, motion)
         if alignment.fine or (alignment.ready and self._shuffles >= MAX_SHUFFLES):
             self.phase = "head_up"
-            robot_type = context.world.robot.robot_type
-            _, self._long = motion_for(robot_type, self.motions, self.foot, distance)
+            self._long = long
             self._strength = strength_for(motion, distance)
         elif alignment.within_shuffle and self._shuffles < MAX_SHUFFLES:
             self.phase = "shuffle"

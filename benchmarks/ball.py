@@ -19,9 +19,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from sim.fidelity import server_contacts
 from sim.field import DEFAULT_SUBSTEPS, Ball, build_field, foot_strike_speed
 from sim.physics import CYCLE_SECONDS, PhysicsWorld
+from sim.session import default_contacts
 from world.field_geometry import BALL_RADIUS
 
 SPEEDS = (2.0, 4.0, 6.0, 8.0, 10.0)
@@ -34,8 +34,8 @@ ROLL_SECONDS = 10.0
 
 def roll(speed: float, substeps: int = DEFAULT_SUBSTEPS) -> tuple[float, float]:
     """(total roll distance, time after which the ball stays within 1 mm of its rest point), on
-    the contacts a default session plays (:func:`sim.fidelity.server_contacts`)."""
-    contact = server_contacts()
+    the contacts a default session plays (:func:`sim.session.default_contacts`)."""
+    contact = default_contacts()
     world = PhysicsWorld(substeps=substeps, min_bounce_speed=contact.min_bounce_speed)
     try:
         build_field(world, contact.ground, contact.post_restitution)

@@ -37,14 +37,12 @@ import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from behaviors.kick import KICK_LEFT, KickMotion, kick_motion, parse_kicks
+from behaviors.kick import FEET, KICK_LEFT, KickMotion, kick_motion, parse_kicks
 from benchmarks.kick import KickResult, run_trial
 from world.nao_model import robot_spec
 
 #: Penalty (m of score) for a trial in which the robot fell.
 FALL_PENALTY = 5.0
-#: The feet every candidate kicks with (the right one plays the left kick mirrored).
-FEET = ("left", "right")
 
 
 @dataclass(frozen=True)

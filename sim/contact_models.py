@@ -17,16 +17,15 @@ are set per pair (ODE surface parameters), so one model cannot match every pair 
   driven foot then gives the ball 1.8x its speed, as off a rigid foot on the real server.
 
 * ``bounce`` (the default since session 20): every spring and damper as ``soft``, with the
-  restitutions of ``strike`` (foot-ball, ball-ground, ball-post 0.8; robot-ground,
-  robot-robot 0.01) and its 0.8 m/s minimum bounce speed. This is how the real server builds
-  a foot-ball contact: SimSpark's
-  ``ContactJointHandler`` mixes the two colliders' surfaces, so the robot's soft ERP / CFM
-  (averaged with the ball's) and the ball's bounce 0.8 (the robot's is off) both apply; a
-  bounce is a velocity target, which a 26 g ball meets nearly in full through a soft contact
-  too. A foot then gives the ball about 2x its speed (``benchmarks/kick.py --impact`` under
-  ``benchmarks/physics.py --variant bounce``), as off the real server's foot, while
-  robot-ground contacts and a robot's self-contacts keep their springs (which ``strike``
-  could not: its rigid robot links made the get-up and the kicks fall).
+  restitutions of ``strike`` (foot-ball, ball-ground, ball-post 0.8; robot-ground, robot-robot
+  0.01) and its 0.8 m/s minimum bounce speed. This is how the real server builds a foot-ball
+  contact: SimSpark's ``ContactJointHandler`` mixes the two colliders' surfaces, so the robot's
+  soft ERP / CFM (averaged with the ball's) and the ball's bounce 0.8 (the robot's is off) both
+  apply; a bounce is a velocity target, which a 26 g ball meets nearly in full through a soft
+  contact too. A foot then gives the ball about 2x its speed (``benchmarks/kick.py --impact``
+  under ``benchmarks/physics.py --variant bounce``), as off the real server's foot, while
+  robot-ground contacts and a robot's self-contacts keep their springs (which ``strike`` could
+  not: its rigid robot links made the get-up and the kicks fall).
 
 ``self_collision`` False lets no two parts of one robot touch, as on the real server
 (``nao_hetero.rsg``: each NAO is a ``Space`` with ``disableInnerCollision true``); see

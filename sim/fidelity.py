@@ -123,8 +123,10 @@ def replay(
     """Run ``recording``'s speeds on a fresh stand-in robot and compare with the real torso.
 
     The robot, ground and bounce threshold are those a default session plays
-    (:func:`server_contacts`) unless ``physics`` or ``build_ground`` replace them."""
-    contact = server_contacts()
+    (:func:`sim.session.default_contacts`) unless ``physics`` or ``build_ground`` replace them."""
+    from sim.session import default_contacts  # the session imports far more than a replay
+
+    contact = default_contacts()
     world = PhysicsWorld(substeps=substeps, min_bounce_speed=contact.min_bounce_speed)
     try:
         _ground(world, build_ground, contact)
@@ -157,17 +159,6 @@ def replay(
         np.array(recording.frp_force_z),
         np.array(forces),
     )
-
-
-def server_contacts() -> ContactPhysics:
-    """The contacts of a session built with the default ``SessionConfig`` (the default contact
-    model, since session 20 ``bounce``), looked up through ``sim.session`` at call time so that
-    a benchmark variant (``benchmarks/physics.py``) that sets what sessions play sets it here
-    too."""
-    import sim.session
-
-    config = sim.session.SessionConfig()
-    return sim.session.contact_physics(config.contact, config.self_collision)
 
 
 def _ground(

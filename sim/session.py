@@ -21,7 +21,12 @@ from pathlib import Path
 
 import numpy as np
 
-from sim.contact_models import CONTACT_MODELS, DEFAULT_CONTACT_MODEL, contact_physics
+from sim.contact_models import (
+    CONTACT_MODELS,
+    DEFAULT_CONTACT_MODEL,
+    ContactPhysics,
+    contact_physics,
+)
 from sim.field import DEFAULT_SUBSTEPS, Ball, build_field
 from sim.hearing import Ear, Listener, broadcast
 from sim.monitor import (
@@ -143,6 +148,15 @@ class SessionSnapshot:
 
     physics: object
     python_state: dict
+
+
+def default_contacts() -> ContactPhysics:
+    """The contacts a session built with the default ``SessionConfig`` plays (since session 20
+    the ``bounce`` model), for worlds built outside a session (fidelity replays, ball rolls).
+    ``contact_physics`` is looked up in this module at call time, so a benchmark variant that
+    sets what sessions play (``benchmarks/physics.py``) sets it here too."""
+    config = SessionConfig()
+    return contact_physics(config.contact, config.self_collision)
 
 
 class Session:

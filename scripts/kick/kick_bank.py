@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from behaviors.basic_kick import strength_for, wants_long
+from behaviors.basic_kick import motion_for, strength_for
 from behaviors.kick import KickMotion, kick_motion, load_kicks
 from benchmarks.kick import (
     BASIC_KICK_FINISH_CYCLES,
@@ -73,11 +73,11 @@ def play(
     skill = driver.behavior.skill("basic_kick")
     for name in ("kick", "basic_kick"):
         driver.behavior.skill(name).motions = variant.motions  # type: ignore[attr-defined]
-    motion = kick_motion(0, variant.motions, skill.foot, aligned=True)
     fixed = isinstance(variant.asked, str) and variant.asked.startswith("s")
-    long = not fixed and wants_long(motion, variant.asked)
-    if long:
-        motion = kick_motion(0, variant.motions, skill.foot, aligned=True, long=True)
+    if fixed:
+        motion, long = kick_motion(0, variant.motions, skill.foot, aligned=True), False
+    else:
+        motion, long = motion_for(0, variant.motions, skill.foot, variant.asked)
     skill._long = long
     strength = float(variant.asked[1:]) if fixed else strength_for(motion, variant.asked)
     skill._strength = strength
