@@ -197,6 +197,22 @@ def test_the_foot_whose_kick_reaches_wins_within_a_metre_of_walking():
     assert choose_foot({"left": 0.5, "right": 1.0}, {"left": 4.0, "right": 4.0}, LONG) == "left"
 
 
+def test_the_long_left_kick_raises_the_support_arm_until_the_recover_frame():
+    """Session 20: the left long kick lifts its support side's (right) arm 10 deg sideways from
+    the weight shift and lowers it in the recover frame after the swing (replayed from 100 saved
+    approaches, falls 22 -> 8); the right long kick keeps its arms (raised, it missed the ball
+    or fell before contact)."""
+    stand = get_pose("stand").joints
+    long = kick_motion(0, None, "left", aligned=True, long=True)
+    frames = long.sequence(1.0).frames
+    recover = max(long.swing_frames) + 1
+    assert frames[0].joints["raj2"] <= stand["raj2"] - 10.0  # right arm out: - on the right
+    assert all("raj2" not in frames[i].joints for i in range(1, recover))  # held up
+    assert frames[recover].joints["raj2"] == stand["raj2"]
+    right = kick_motion(0, None, "right", aligned=True, long=True).sequence(1.0, mirror=True)
+    assert right.frames[0].joints.get("laj2", stand["laj2"]) == stand["laj2"]
+
+
 def test_a_kick_that_goes_left_is_aimed_right_of_the_target():
     """``aim_deg``: the left long kick's ball goes about 10 deg left of the robot's facing, so
     ``basic_kick`` faces the target turned 10 deg right about the ball; the right foot plays the
