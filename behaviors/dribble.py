@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from behaviors.joint_control import JointCommands
+from behaviors.joint_control import CYCLE_SECONDS, JointCommands
 from behaviors.mirror import (
     mirror_accelerometer,
     mirror_gyro,
@@ -55,6 +55,7 @@ from behaviors.mirror import (
 )
 from behaviors.skill import Skill, SkillContext
 from behaviors.walk import WalkEngine, WalkParameters, _read_parameters, carry_on_gait
+from world.field_geometry import BALL_RADIUS
 from world.localization import wrap_deg
 from world.nao_model import ROBOT_TYPES
 from world.perception import ForceResistance
@@ -74,6 +75,7 @@ __all__ = [
     "dribble_walk_parameters",
     "recovery_velocity",
     "still_turning",
+    "touch_step_cap",
 ]
 
 DRIBBLE_FILE = Path(__file__).resolve().parent / "data" / "dribble.yaml"
@@ -170,6 +172,13 @@ class DribbleGait:
     #: place behind it) rather than orbited: turning on the spot towards a new direction
     #: leaves a ball that rolled 0.8 m ahead where it is, and it drifts out of the front
     fetch_distance: float = math.inf
+    #: the touch planner (:func:`touch_step_cap`; inf: off): where the touching toe lands,
+    #: metres ahead of the torso at the end of its step, less half the step ...
+    touch_reach: float = math.inf
+    #: ... how far past the ball's back it may land (the push), and the shortest step the
+    #: planner asks for
+    touch_push: float = 0.0
+    touch_min_step: float = 0.04
 
 
 @dataclass(frozen=True, slots=True)
@@ -223,6 +232,30 @@ def ball_in_front(inputs: DribbleInputs, gait: DribbleGait) -> bool:
         0.0, abs(_off_line(inputs.ball_y - gait.ball_side, inputs, gait)) - gait.reach_side
     )
     return inputs.ball_x >= gait.reach_min_ahead + off_line
+
+
+def touch_step_cap(inputs: DribbleInputs, gait: DribbleGait, step_seconds: float) -> float | None:
+    """The longest forward step (m) the touching leg may take so that its toe meets the ball
+    only as the swing ends, or None (planner off, or the ball off the toe's line).
+
+    Why: under the bounce contacts (restitution 0.8, as on the real server) a ball the toe
+    meets mid-swing, where the swing foot moves at about twice the walking speed, leaves at
+    2-3.5 m/s and rolls beyond reach (``scripts/dribble/touches.py``: LFDL's touches at t = 5-6
+    of the left swing). The toe lands ``touch_reach + step / 2`` ahead of the torso's place at
+    the end of the step, i.e. ``touch_reach + 1.5 step`` ahead of where the torso is now; the
+    ball will lie ``ball_x + ball_vx * step_seconds`` ahead by then. The step that lands the toe
+    ``touch_push`` past the ball's back is the cap; a longer planned step is shortened to it.
+    Not while turning (:attr:`DribbleInputs.turning`, or the heading off by more than the
+    placement dead band)."""
+    if not math.isfinite(gait.touch_reach) or not ball_in_front(inputs, gait):
+        return None
+    if inputs.turning or abs(inputs.heading_error_deg) > gait.placement_deadband_deg:
+        return None  # turning: short steps there tipped the robot (angled starts)
+    if abs(_off_line(inputs.ball_y - gait.ball_side, inputs, gait)) > gait.reach_side:
+        return None
+    ball_then = inputs.ball_x + max(inputs.ball_vx, 0.0) * step_seconds
+    step = (ball_then - BALL_RADIUS + gait.touch_push - gait.touch_reach) / 1.5
+    return max(gait.touch_min_step, step)
 
 
 def dribble_velocity(inputs: DribbleInputs, gait: DribbleGait) -> tuple[float, float, float]:
@@ -576,12 +609,22 @@ class DribbleSkill(Skill):
             command = dribble_velocity(own, gait)
             self.last_inputs = own
         self.last_command = command
+        if inputs is not None:
+            self._plan_touch(engine, gait, own)
         if self._mirror:
             self._step_mirrored(context, engine, command)
         else:
             engine.step(context, *command)
         context.commands.set_targets({"hj1": 0.0, "hj2": HEAD_PITCH_DEG})
         return False
+
+    def _plan_touch(self, engine: WalkEngine, gait: DribbleGait, inputs: DribbleInputs) -> None:
+        """Before a step of the gait's left leg starts, cap its length (:func:`touch_step_cap`)."""
+        t, left_active = engine.phase
+        if t < 0 or not engine.generator.at_step_end or left_active:
+            return
+        seconds = engine.params.step.step_cycles * CYCLE_SECONDS
+        engine.next_step_forward_cap = touch_step_cap(inputs, gait, seconds)
 
     def _step_mirrored(
         self, context: SkillContext, engine: WalkEngine, command: tuple[float, float, float]

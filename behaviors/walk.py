@@ -304,6 +304,9 @@ class WalkEngine:
         self._heading_drift = 0.0
         #: step parameters that take over at the next step boundary (see continue_from)
         self._pending_step: StepParameters | None = None
+        #: the longest forward step (m) the next step to start may take; set by a caller for
+        #: one step (the dribble's touch planner), cleared when that step starts
+        self.next_step_forward_cap: float | None = None
         #: the manager cycle of the last step() (None before the first): a skill taking
         #: over checks that this engine walked in the cycle just before
         self.last_cycle: int | None = None
@@ -446,7 +449,21 @@ class WalkEngine:
         self._stepping = True
         if between_steps and not still:  # stopping: the feet go home, the robot stays put
             command = self._balanced(command, context)
+        if between_steps and self.next_step_forward_cap is not None:
+            command = self._capped(command, self.next_step_forward_cap)
+            self.next_step_forward_cap = None
         return generator.next_targets(command)
+
+    def _capped(self, command: StepCommand, cap: float) -> StepCommand:
+        """The step shortened to ``cap`` m forward at most, with the smoothed velocity brought
+        down to match (so the steps after it grow back at the walk's acceleration instead of
+        jumping back to the old length)."""
+        if command.forward <= cap:
+            return command
+        duration = self.params.step.step_cycles * CYCLE_SECONDS
+        x, y, w = self.velocity
+        self.velocity = (min(x, cap / duration), y, w)
+        return replace(command, forward=cap)
 
     def _feet_at_neutral(self) -> bool:
         left, right = self.generator.feet

@@ -22,6 +22,7 @@ from behaviors.dribble import (
     dribble_walk_parameters,
     recovery_velocity,
     still_turning,
+    touch_step_cap,
 )
 from behaviors.joint_control import JointCommands
 from behaviors.mirror import mirror_joint_angles
@@ -218,6 +219,26 @@ def test_a_tilting_robot_calms_down():
     upright = dribble_velocity(DribbleInputs(0.2, 0.05, 0.0, 0.0, 10.0, 2.0), gait)
     rocking = dribble_velocity(DribbleInputs(0.2, 0.05, 0.0, 0.0, 10.0, 30.0), gait)
     assert rocking == pytest.approx(tuple(0.3 * v for v in upright))
+
+
+def test_the_touch_planner_lands_the_toe_just_past_the_ball_and_is_off_by_default():
+    """``touch_step_cap``: the touching leg's step is capped so that its toe, landing
+    ``touch_reach + 1.5 step`` ahead of the torso, meets the ball's back (plus the push) only as
+    the swing ends; a rolling ball is met where it will be; never below the shortest step; off
+    (None) unless set, for a ball off the toe's line and while turning."""
+    assert touch_step_cap(_inputs(0.25, 0.0), GAIT, 0.16) is None  # default: off
+    gait = replace(GAIT, touch_reach=0.14, touch_push=0.01, touch_min_step=0.05)
+    cap = touch_step_cap(_inputs(0.4, 0.0), gait, 0.16)
+    assert cap is not None
+    assert gait.touch_reach + 1.5 * cap == pytest.approx(0.4 - 0.042 + 0.01)
+    rolling = DribbleInputs(0.4, 0.0, 0.5, 0.0, 0.0)
+    assert touch_step_cap(rolling, gait, 0.16) == pytest.approx(cap + 0.5 * 0.16 / 1.5)
+    assert touch_step_cap(_inputs(0.2, 0.0), gait, 0.16) == gait.touch_min_step
+    off_line = _inputs(0.4, gait.ball_side + gait.reach_side + 0.02)
+    assert touch_step_cap(off_line, gait, 0.16) is None
+    turning = _inputs(0.4, 0.0, heading_error=gait.placement_deadband_deg + 5.0)
+    assert touch_step_cap(turning, gait, 0.16) is None
+    assert touch_step_cap(replace(_inputs(0.4, 0.0), turning=True), gait, 0.16) is None
 
 
 def test_within_reach_window():

@@ -21,6 +21,7 @@ from behaviors.walk import (
 )
 from benchmarks.dribble import with_settings
 from world.nao_model import ROBOT_TYPES
+from world.robot_state import RobotState
 
 
 def test_phase_runs_0_to_7_and_the_swing_leg_alternates():
@@ -734,3 +735,31 @@ def test_the_settle_stays_off_inside_other_skills(tmp_path):
     on = with_settings(["default.go_to_settle_frames=8"], tmp_path, WALK_FILE)
     assert walk_parameters(4, on).go_to_settle_frames == 8
     assert walk_parameters(4, on, inside_skill=True).go_to_settle_frames == 0
+
+
+def test_a_forward_cap_shortens_only_the_next_step_and_the_walk_grows_back_from_it():
+    """The dribble's touch planner caps one step (``next_step_forward_cap``): that step is
+    shortened, the smoothed velocity drops to match it, the cap is used up, and the steps after
+    it lengthen again at the walk's acceleration instead of jumping back."""
+    engine = WalkEngine(0)
+    context = SimpleNamespace(world=SimpleNamespace(robot=RobotState(0)))
+    duration = engine.params.step.step_cycles * 0.02
+    engine.velocity = (0.8, 0.0, 0.0)
+    engine._next_foot_targets(context)  # the first step starts at full length
+    full = engine.generator.command.forward
+    assert full == pytest.approx(min(0.8 * duration, engine.params.step.max_forward))
+    for _ in range(engine.params.step.step_cycles - 1):
+        engine._next_foot_targets(context)
+    assert engine.generator.at_step_end
+    engine.next_step_forward_cap = 0.05
+    engine._next_foot_targets(context)
+    assert engine.generator.command.forward == pytest.approx(0.05)
+    assert engine.velocity[0] == pytest.approx(0.05 / duration)
+    assert engine.next_step_forward_cap is None
+    engine.next_step_forward_cap = 0.5  # longer than the step: no change
+    for _ in range(engine.params.step.step_cycles):
+        engine._smooth_velocity(0.8, 0.0, 0.0)
+        engine._next_foot_targets(context)
+    grown = engine.generator.command.forward
+    assert 0.05 < grown < full
+    assert engine.next_step_forward_cap is None
