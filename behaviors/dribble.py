@@ -81,6 +81,8 @@ __all__ = [
 DRIBBLE_FILE = Path(__file__).resolve().parent / "data" / "dribble.yaml"
 DRIBBLE_KINDS = ("dfdl", "lfdl")
 FEET = ("left", "right")
+#: the legs whose steps the touch planner may cap (DribbleGait.touch_legs)
+TOUCH_LEGS = ("left", "both")
 #: Neck pitch while dribbling (deg, negative = down): the ball at the toes lies about 65 deg
 #: below the horizon, outside the 120 deg view cone of a level head; at -45 deg the cone
 #: still reaches 9 deg above the horizon, enough for the flags that localise the robot.
@@ -179,6 +181,9 @@ class DribbleGait:
     #: planner asks for
     touch_push: float = 0.0
     touch_min_step: float = 0.04
+    #: which legs' steps the planner caps: ``"left"`` (LFDL: only the left toe touches) or
+    #: ``"both"`` (DFDL: the toes take turns)
+    touch_legs: str = "left"
 
 
 @dataclass(frozen=True, slots=True)
@@ -449,7 +454,12 @@ def dribble_gait(kind: str, robot_type: int, path: Path = DRIBBLE_FILE) -> Dribb
     unknown = set(values) - known
     if unknown:
         raise ValueError(f"{path} ({kind}, type{robot_type}): unknown setting(s) {sorted(unknown)}")
-    return DribbleGait(**{k: float(v) for k, v in values.items()})
+    if values.get("touch_legs", "left") not in TOUCH_LEGS:
+        raise ValueError(
+            f"{path} ({kind}, type{robot_type}): touch_legs must be one of {TOUCH_LEGS}, "
+            f"got {values['touch_legs']!r}"
+        )
+    return DribbleGait(**{k: v if k == "touch_legs" else float(v) for k, v in values.items()})
 
 
 @cache
@@ -619,9 +629,12 @@ class DribbleSkill(Skill):
         return False
 
     def _plan_touch(self, engine: WalkEngine, gait: DribbleGait, inputs: DribbleInputs) -> None:
-        """Before a step of the gait's left leg starts, cap its length (:func:`touch_step_cap`)."""
+        """Before a step of a touching leg starts (the gait's left, or either with
+        ``touch_legs: both``), cap its length (:func:`touch_step_cap`)."""
         t, left_active = engine.phase
-        if t < 0 or not engine.generator.at_step_end or left_active:
+        if t < 0 or not engine.generator.at_step_end:
+            return
+        if left_active and gait.touch_legs != "both":  # the next step is the right leg's
             return
         seconds = engine.params.step.step_cycles * CYCLE_SECONDS
         engine.next_step_forward_cap = touch_step_cap(inputs, gait, seconds)

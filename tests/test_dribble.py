@@ -410,6 +410,9 @@ def _short_run(
             new_speed = ball.speed()
             if new_speed > speed + 0.02:
                 speed_ups.append(bool(near))
+                # under the bounce contacts a push can begin and end inside one cycle: the
+                # links near the ball in a cycle where it sped up pushed it
+                touched |= {agent.robot.link_name(c[4]) for c in near}
             speed = new_speed
         return _ShortRun(
             phases, start, np.array(ball.position()), touched, speed_ups, agent.robot.has_fallen()
@@ -483,7 +486,9 @@ def test_dfdl_pushes_the_ball_with_both_feet():
     an AVX-512 EPYC: seed 0 fell after 7.2 s, having pushed with both feet; seeds 1-7 stayed
     up). Under the bounce contacts (session 20) seed 1 pushed with the left foot only at up to
     0.9 m/s; capped at 0.7 m/s (the ball bouncing off the toes less hard) every seed pushes with
-    both."""
+    both. Session 21 (the touch planner): seed 0's right-foot push at 2.5 s began and ended
+    inside one cycle, so the pushes are now also read from the links near the ball when it
+    speeds up (``_short_run``)."""
     runs = [_short_run("dfdl", "left", cycles=400, seed=seed) for seed in (0, 1, 2)]
     assert sum(run.fell for run in runs) <= 1
     for run in runs:
