@@ -241,6 +241,16 @@ def test_the_touch_planner_lands_the_toe_just_past_the_ball_and_is_off_by_defaul
     assert touch_step_cap(replace(_inputs(0.4, 0.0), turning=True), gait, 0.16) is None
 
 
+def test_touch_legs_must_be_left_or_both(tmp_path):
+    from benchmarks.dribble import with_settings
+
+    path = with_settings(["lfdl.controller.default.touch_legs=right"], tmp_path)
+    with pytest.raises(ValueError, match="touch_legs"):
+        dribble_gait("lfdl", 0, path)
+    assert dribble_gait("dfdl", 0).touch_legs == "both"
+    assert dribble_gait("lfdl", 0).touch_legs == "left"
+
+
 def test_within_reach_window():
     assert ball_within_reach(_inputs(0.2, 0.0), GAIT)
     assert not ball_within_reach(_inputs(0.05, 0.0), GAIT)
