@@ -44,6 +44,7 @@ from __future__ import annotations
 import argparse
 import math
 import statistics
+import sys
 import tempfile
 from collections import defaultdict, deque
 from concurrent.futures import ProcessPoolExecutor
@@ -52,6 +53,8 @@ from pathlib import Path
 from typing import Any
 
 import yaml
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.dribble import DRIBBLE_FILE
 from learning.local_agent import LocalAgent
