@@ -17,7 +17,11 @@ Definitions (the report's figures mean exactly this):
   each phase ``(t, left_active)``;
 * holding: the 2023 rule's clock (ball within 0.12 m of the torso, reset after 0.5 s free);
   ``holding_fouls`` counts the referee's calls (play mode leaving PlayOn), ``max_held_s`` the
-  longest the clock ran.
+  longest the clock ran;
+* a touch: a cycle in which the ball's ground speed rises by more than ``TOUCH_JUMP`` (only a
+  contact speeds it up); ``touch_ball_speed_mps`` is the median (and ``_p90`` the 90th
+  percentile) of the ball's speed after the touches: a toe meeting the ball fast sends it out
+  of reach (``scripts/dribble/touches.py`` lists them with their phases).
 
 ``python -m benchmarks.dribble`` prints ``name: value`` lines for type 0 (``--types`` for more,
 ``--seeds 0 1 2 ...`` for several runs each: speeds then average over the runs that reached
@@ -64,6 +68,8 @@ from world.yaml_config import apply_overrides
 
 #: Cycle length (s).
 CYCLE = 0.02
+#: A rise of the ball's ground speed (m/s) within one cycle that counts as a touch.
+TOUCH_JUMP = 0.15
 #: The robot starts this far behind the ball (m), as the kick-in-motion episodes do.
 START_BEHIND = 0.3
 #: The ball counts as lost beyond this distance from the torso (m): a dribble long kicks the
@@ -106,6 +112,8 @@ class DribbleRun:
         default_factory=lambda: defaultdict(list)
     )
     seed: int = 0
+    #: the ball's ground speed (m/s) after each touch
+    touch_speeds: list[float] = field(default_factory=list)
     #: the last ``trace_seconds`` of the run, one line per sample (empty unless asked for)
     trace: list[str] = field(default_factory=list)
 
@@ -212,10 +220,15 @@ def run_dribble(
     holding = _Holding()
     lost = False
     start_x, start_y, _ = session.ball.position()
+    ball_speed = 0.0
     try:
         for cycle in range(round(limit / CYCLE)):
             agent.run("dribble", kind, direction_deg, foot)
             result.seconds = (cycle + 1) * CYCLE
+            vx, vy, _ = session.ball.velocity()
+            if math.hypot(vx, vy) - ball_speed > TOUCH_JUMP:
+                result.touch_speeds.append(math.hypot(vx, vy))
+            ball_speed = math.hypot(vx, vy)
             bx, by, _ = session.ball.position()
             tx, ty, _ = agent.robot.torso_position()
             gap = math.hypot(bx - tx, by - ty)
@@ -315,6 +328,11 @@ def report_lines(runs: list[DribbleRun]) -> list[str]:
         f"{key}_holding_fouls[{t}]: {sum(r.holding_fouls for r in runs)}",
         f"{key}_max_held_s[{t}]: {max(r.max_held_s for r in runs):.2f}",
     ]
+    touches = sorted(v for r in runs for v in r.touch_speeds)
+    if touches:
+        p90 = touches[min(len(touches) - 1, int(0.9 * len(touches)))]
+        lines.append(f"{key}_touch_ball_speed_mps[{t}]: {statistics.median(touches):.2f}")
+        lines.append(f"{key}_touch_ball_speed_mps_p90[{t}]: {p90:.2f}")
     if first.start_angle_deg:
         firsts = [r.first_metre_s for r in runs if r.first_metre_s is not None]
         mean_first = statistics.mean(firsts) if firsts else 0.0

@@ -612,3 +612,16 @@ def test_benchmark_trace_keeps_the_last_seconds_and_shows_them_for_a_fall():
     assert len(run_lines(run)) == 1 + len(run.trace) * (run.fell or run.ball_losses > 0)
     run.fell = True
     assert run_lines(run)[1:] == [f"trace[dfdl][type0][seed=0][angle=0]: {s}" for s in run.trace]
+
+
+def test_benchmark_counts_touches_and_reports_the_ball_speed_after_them():
+    """``benchmarks.dribble`` records the ball's speed after every touch (a one-cycle rise of its
+    speed: only a contact speeds it up) and reports their median and 90th percentile."""
+    from benchmarks.dribble import TOUCH_JUMP, report_lines, run_dribble
+
+    run = run_dribble("lfdl", 0, distance=5.0, seed=0, max_seconds=3.0)
+    assert run.touch_speeds  # the toe met the ball within 3 s
+    assert all(speed > TOUCH_JUMP for speed in run.touch_speeds)
+    lines = dict(line.split(": ") for line in report_lines([run]))
+    median = float(lines["lfdl_touch_ball_speed_mps[type0]"])
+    assert min(run.touch_speeds) <= median <= float(lines["lfdl_touch_ball_speed_mps_p90[type0]"])
