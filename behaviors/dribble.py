@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from behaviors.joint_control import CYCLE_SECONDS, JointCommands
+from behaviors.joint_control import JointCommands
 from behaviors.mirror import (
     mirror_accelerometer,
     mirror_gyro,
@@ -639,8 +639,7 @@ class DribbleSkill(Skill):
             return
         if left_active and gait.touch_legs != "both":  # the next step is the right leg's
             return
-        seconds = engine.params.step.step_cycles * CYCLE_SECONDS
-        engine.next_step_forward_cap = touch_step_cap(inputs, gait, seconds)
+        engine.next_step_forward_cap = touch_step_cap(inputs, gait, engine.step_seconds)
 
     def _step_mirrored(
         self, context: SkillContext, engine: WalkEngine, command: tuple[float, float, float]

@@ -344,6 +344,11 @@ class WalkEngine:
         return self.generator.phase
 
     @property
+    def step_seconds(self) -> float:
+        """How long one step lasts (s): ``step_cycles`` server cycles."""
+        return self.params.step.step_cycles * CYCLE_SECONDS
+
+    @property
     def is_stepping(self) -> bool:
         """Whether a step is under way (the last cycle's targets came from a step)."""
         return self._stepping
@@ -407,8 +412,7 @@ class WalkEngine:
         """The turn rate (deg/s) the step under way plans (0 standing)."""
         if not self._stepping:
             return 0.0
-        duration = self.params.step.step_cycles * CYCLE_SECONDS
-        return math.degrees(self.generator.command.turn) / duration
+        return math.degrees(self.generator.command.turn) / self.step_seconds
 
     def _reference_turn_deg_s(self) -> float:
         """The turn rate the gyro's turn is held to (``heading_hold_reference``)."""
@@ -417,7 +421,7 @@ class WalkEngine:
         return math.degrees(self.velocity[2])
 
     def _step_command(self) -> StepCommand:
-        duration = self.params.step.step_cycles * CYCLE_SECONDS
+        duration = self.step_seconds
         x, y, w = self.velocity
         w -= math.radians(self.params.heading_hold_gain * self._heading_drift)
         command = StepCommand(x * duration, y * duration, w * duration).clipped(self.params.step)
@@ -460,9 +464,8 @@ class WalkEngine:
         jumping back to the old length)."""
         if command.forward <= cap:
             return command
-        duration = self.params.step.step_cycles * CYCLE_SECONDS
         x, y, w = self.velocity
-        self.velocity = (min(x, cap / duration), y, w)
+        self.velocity = (min(x, cap / self.step_seconds), y, w)
         return replace(command, forward=cap)
 
     def _feet_at_neutral(self) -> bool:
@@ -864,7 +867,7 @@ class WalkSkill(WalkSkillBase):
             return 0.0, 0.0, 0.0
         g = replace(self.gains, max_turn_deg=engine.params.go_to_max_turn_deg)
         step = engine.params.step
-        duration = step.step_cycles * CYCLE_SECONDS
+        duration = engine.step_seconds
         step_top = step.max_forward / duration
         max_forward = min(step_top, engine.params.walk_to_max_speed)
         if facing_travel:

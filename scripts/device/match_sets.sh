@@ -13,14 +13,8 @@ out=${3:?usage: match_sets.sh FIRST LAST OUT_DIR}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 cd "$(dirname "$0")/../.."
-if [ -f .pyb/py.tar.xz ]; then
-  mkdir -p /tmp/b && tar xJf .pyb/py.tar.xz -C /tmp/b
-  b=/tmp/b/py
-  export LD_LIBRARY_PATH=$b/lib PYTHONHOME=$b PYTHONPATH=$b/site:$PWD PYTHONNOUSERSITE=1
-  python=$b/bin/python3.11
-else
-  python=$PWD/.venv/bin/python
-fi
+# shellcheck source=scripts/device/python_env.sh
+source scripts/device/python_env.sh
 seq "$first" "$last" | xargs -P "$(nproc)" -I{} sh -c \
   "$python benchmarks/match.py --players 3 --matches 1 --duration ${DURATION:-120} --seed {} \
   >$out/match3_seed{}.txt 2>&1"

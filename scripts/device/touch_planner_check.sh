@@ -11,20 +11,14 @@ out=${1:-${OUT:?usage: touch_planner_check.sh OUT_DIR}}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 cd "$(dirname "$0")/../.."
-if [ -f .pyb/py.tar.xz ]; then
-  mkdir -p /tmp/b && tar xJf .pyb/py.tar.xz -C /tmp/b
-  b=/tmp/b/py
-  export LD_LIBRARY_PATH=$b/lib PYTHONHOME=$b PYTHONPATH=$b/site:$PWD PYTHONNOUSERSITE=1
-  python=$b/bin/python3.11
-else
-  python=$PWD/.venv/bin/python
-fi
+# shellcheck source=scripts/device/python_env.sh
+source scripts/device/python_env.sh
 jobs=$(nproc)
 # smaller runs for a smoke test: SEEDS="100 101" MATCHES=2 DURATION=5 TYPES="0"
 seeds=${SEEDS:-$(seq -s ' ' 100 131)}
 types=${TYPES:-0 1 2 3 4}
 matches=${MATCHES:-16}
-duration=${DURATION:-120}
+export DURATION=${DURATION:-120}
 off="--set dfdl.controller.default.touch_reach=.inf --set lfdl.controller.default.touch_reach=.inf"
 # shellcheck disable=SC2086
 $python benchmarks/dribble.py --types $types --seeds $seeds --distance 10 --jobs "$jobs" \
@@ -32,14 +26,11 @@ $python benchmarks/dribble.py --types $types --seeds $seeds --distance 10 --jobs
 # shellcheck disable=SC2086
 $python benchmarks/dribble.py --types $types --seeds $seeds --distance 10 --jobs "$jobs" \
   $off >"$out/dribble_no_planner_seeds100-131.txt" 2>&1
-play_matches() {  # label, checkout to play from
+play_matches() {  # label, checkout to play from (its own scripts/device/match_sets.sh)
   local label=$1 tree=$2
-  seq 1 "$matches" | xargs -P "$jobs" -I{} sh -c \
-    "cd $tree && PYTHONPATH=$tree:\${PYTHONPATH:-} $python benchmarks/match.py --players 3 \
-    --matches 1 --duration $duration --seed {} >$out/match3_${label}_seed{}.txt 2>&1"
-  for s in $(seq 1 "$matches"); do grep '^# match' "$out/match3_${label}_seed$s.txt"; done \
-    >"$out/match3_${label}_seeds1-$matches.txt"
-  rm -f "$out/match3_${label}"_seed[0-9]*.txt
+  PYTHON=$python "$tree/scripts/device/match_sets.sh" 1 "$matches" "$out/$label"
+  mv "$out/$label/match3_seeds1-$matches.txt" "$out/match3_${label}_seeds1-$matches.txt"
+  rmdir "$out/$label"
 }
 play_matches planner "$PWD"
 # matches read the packaged dribble.yaml: play the ones without the planner from a copy of the

@@ -29,7 +29,13 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from benchmarks.dribble import CYCLE, DRIBBLE_FILE, start_dribble_episode, with_settings
+from benchmarks.dribble import (
+    CYCLE,
+    DRIBBLE_FILE,
+    TOUCH_JUMP,
+    start_dribble_episode,
+    with_settings,
+)
 
 
 def touches(
@@ -99,7 +105,7 @@ def main() -> None:
     parser.add_argument("--foot", default="left", choices=("left", "right"))
     parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2])
     parser.add_argument("--seconds", type=float, default=15.0)
-    parser.add_argument("--jump", type=float, default=0.15)
+    parser.add_argument("--jump", type=float, default=TOUCH_JUMP)
     parser.add_argument("--set", action="append", default=[], metavar="DOTTED.KEY=VALUE")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
