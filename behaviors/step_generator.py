@@ -251,6 +251,12 @@ class StepGenerator:
         return self._command
 
     @property
+    def speed_share(self) -> float:
+        """How much of a full forward step (0..1) the gait is at this cycle (blended over the
+        step from its start to its end): what ``speed_lean`` scales with."""
+        return self._speed_now
+
+    @property
     def feet(self) -> tuple[FootPose, FootPose]:
         """Where the left and right soles are (walk frame, as planned)."""
         return self._left, self._right

@@ -38,7 +38,13 @@ import yaml
 from behaviors.ik import LegIK, leg_ik_for
 from behaviors.joint_control import CYCLE_SECONDS
 from behaviors.skill import Skill, SkillContext
-from behaviors.step_generator import FootTargets, StepCommand, StepGenerator, StepParameters
+from behaviors.step_generator import (
+    FootTargets,
+    StepCommand,
+    StepGenerator,
+    StepParameters,
+    swing_progress,
+)
 from world.localization import wrap_deg
 from world.nao_model import ROBOT_TYPES, robot_spec
 
@@ -208,6 +214,11 @@ class WalkParameters:
     #: arm pose while walking (degrees), right side; the left mirrors it
     arm_pitch_deg: float = -90.0
     arm_out_deg: float = -10.0
+    #: arm swing (degrees of shoulder pitch each way) at a full forward step, in proportion
+    #: below it: each arm swings with the opposite leg (forward while that leg swings
+    #: forward), as people walk, so the arms' yaw moment answers the legs'. Why: at full
+    #: speed the torso yaws 10-30 deg a step and feet spin (session 7). 0 (the default) is off
+    arm_swing_deg: float = 0.0
     #: toe joints (type 4) while walking, degrees: curled up, the loaded toes yield
     toe_deg: float = 70.0
     #: cycles to blend from the pose the walk found into the walk's stance
@@ -382,7 +393,7 @@ class WalkEngine:
         self._track_heading(context)
         targets = self._next_foot_targets(context)
         angles = self._leg_angles(targets, context)
-        self._add_arms(angles)
+        self._add_arms(angles, targets)
         for name, offset in (offsets_deg or {}).items():
             angles[name] = angles.get(name, 0.0) + offset
         self._send(context, angles)
@@ -521,11 +532,12 @@ class WalkEngine:
             angles[f"{side}lj6"] = angles[f"{side}lj6"] + p.ankle_roll_gain * roll
             angles[f"{side}lj2"] = angles[f"{side}lj2"] + p.hip_roll_gain * roll
 
-    def _add_arms(self, angles: dict[str, float]) -> None:
+    def _add_arms(self, angles: dict[str, float], targets: FootTargets) -> None:
         p = self.params
+        right_forward = self._arm_swing_deg(targets)  # the right arm goes with the left leg
         angles.update(
-            raj1=p.arm_pitch_deg,
-            laj1=p.arm_pitch_deg,
+            raj1=p.arm_pitch_deg + right_forward,
+            laj1=p.arm_pitch_deg - right_forward,
             raj2=p.arm_out_deg,
             laj2=-p.arm_out_deg,
             raj3=0.0,
@@ -535,6 +547,18 @@ class WalkEngine:
         )
         if self._has_toes:
             angles.update(rlj7=p.toe_deg, llj7=p.toe_deg)
+
+    def _arm_swing_deg(self, targets: FootTargets) -> float:
+        """How far forward (degrees) the right arm swings now (``arm_swing_deg``): from back
+        to front while the left leg swings, and back while the right one does."""
+        p = self.params
+        if p.arm_swing_deg == 0.0 or not self._stepping or targets.t < 0:
+            return 0.0
+        progress = swing_progress((targets.t + 1) / p.step.step_cycles, p.step)
+        forward = 2.0 * progress - 1.0
+        if not targets.left_active:
+            forward = -forward
+        return p.arm_swing_deg * self.generator.speed_share * forward
 
     def _send(self, context: SkillContext, angles: dict[str, float]) -> None:
         """Joint speeds that bring each joint to its target at the cycle the speed acts in."""

@@ -763,3 +763,38 @@ def test_a_forward_cap_shortens_only_the_next_step_and_the_walk_grows_back_from_
     grown = engine.generator.command.forward
     assert 0.05 < grown < full
     assert engine.next_step_forward_cap is None
+
+
+def test_the_arm_swing_follows_the_opposite_leg_and_grows_with_speed():
+    """``arm_swing_deg``: while the left leg swings forward the right arm swings from back to
+    front and the left arm the other way (the arms' yaw moment against the legs'); half speed
+    swings half as far; 0 (the packaged walk) keeps the arms still."""
+    params = replace(walk_parameters(0), arm_swing_deg=20.0)
+    context = SimpleNamespace(world=SimpleNamespace(robot=RobotState(0)))
+
+    def swings(velocity: float, engine_params=params) -> list[tuple[bool, int, float, float]]:
+        engine = WalkEngine(0, engine_params)
+        engine.velocity = (velocity, 0.0, 0.0)
+        out = []
+        for _ in range(6 * engine.params.step.step_cycles):
+            targets = engine._next_foot_targets(context)
+            angles: dict[str, float] = {}
+            engine._add_arms(angles, targets)
+            out.append((targets.left_active, targets.t, angles["raj1"], angles["laj1"]))
+        return out[-2 * engine.params.step.step_cycles :]  # two steps at full speed
+
+    base = params.arm_pitch_deg
+    full = swings(1.0)
+    last = params.step.step_cycles - 1
+    for left_active, t, right, left in full:
+        assert right - base == pytest.approx(base - left)  # the arms swing against each other
+        if t == 0:
+            assert (right < base) == left_active  # the right arm starts behind, then ...
+        if t == last:
+            assert (right > base) == left_active  # ... ends in front
+            assert abs(right - base) == pytest.approx(20.0)
+    half = swings(0.5 * params.step.max_forward / (params.step.step_cycles * 0.02))
+    ends = [abs(r - base) for _, t, r, _ in half if t == last]
+    assert ends and all(e == pytest.approx(10.0, abs=0.5) for e in ends)
+    still = swings(1.0, walk_parameters(0))
+    assert {(r, le) for _, _, r, le in still} == {(base, base)}

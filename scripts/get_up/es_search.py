@@ -48,6 +48,7 @@ from behaviors.poses import default_poses
 from benchmarks.get_up import TrialResult, fall, play_get_up
 from learning.falls import FALL_DIRECTIONS
 from learning.get_up_search import closeness, raw_entries
+from learning.snes import utilities
 from scripts.get_up.forking import forked_map
 from scripts.get_up.screen_sequences import variant_sequences
 from world.nao_model import robot_spec
@@ -211,12 +212,6 @@ def play_all(
     for (f, c), (result, peak) in zip(cells, played, strict=True):
         out[c, f] = (result.succeeded, result.stood_first, peak)
     return out
-
-
-def utilities(count: int) -> np.ndarray:
-    """SNES's rank utilities, best first."""
-    raw = np.maximum(0.0, math.log(count / 2 + 1) - np.log(np.arange(1, count + 1)))
-    return raw / raw.sum() - 1.0 / count
 
 
 def main() -> None:
