@@ -9,7 +9,9 @@ and falls together, which one knob at a time does not explore. This searches the
 Each candidate dribbles ``--runs`` times (``benchmarks.dribble.run_dribble``: the robot 0.3 m
 behind the ball at the centre, ``--distance`` m along x, fresh seeds each generation). Score:
 the runs' mean speed (the ball's, along the direction; a run that did not arrive scores its
-distance over its time), minus ``--loss-penalty`` per ball loss and ``--fall-penalty`` per fall.
+distance over its time, a run that fell none: the ball runs on while the robot falls, and
+with its speed counted the first search learnt to kick the ball and fall), minus
+``--loss-penalty`` per ball loss and ``--fall-penalty`` per fall, over the runs.
 The walk knobs include the walk search's (``learning/walk_search.py``), so a faster walk found
 there is a start here: ``--start-set`` applies ``--set`` strings before the search.
 
@@ -116,7 +118,7 @@ def score_runs(
     results: Sequence[tuple[float, int, bool]], loss_penalty: float, fall_penalty: float
 ) -> Evaluation:
     """A candidate's score from its runs (see the module docstring)."""
-    speed = sum(r[0] for r in results) / len(results)
+    speed = sum(0.0 if fell else v for v, _, fell in results) / len(results)
     losses = sum(r[1] for r in results)
     falls = sum(1 for r in results if r[2])
     score = speed - (loss_penalty * losses + fall_penalty * falls) / len(results)
@@ -152,7 +154,7 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=3, help="dribbles per candidate")
     parser.add_argument("--distance", type=float, default=8.0)
     parser.add_argument("--loss-penalty", type=float, default=0.3)
-    parser.add_argument("--fall-penalty", type=float, default=0.6)
+    parser.add_argument("--fall-penalty", type=float, default=1.0)
     parser.add_argument("--start-set", action="append", default=[], metavar="KEY=VALUE")
     parser.add_argument("--minutes", type=float, default=60.0)
     parser.add_argument("--generations", type=int, default=1000)

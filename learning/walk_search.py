@@ -7,18 +7,19 @@ stance height, the lean, the heel strike and an arm swing trade off under that c
 set by hand, one knob at a time; an optimiser over all of them at once (as UT Austin Villa
 optimised their walk) is what no session had tried.
 
-Scenarios (each a fresh in-process session, the robot walking with ``walk_velocity`` exactly as
-``benchmarks/locomotion.py`` does, on a candidate copy of ``walk.yaml``):
-
-* ``straight`` at two seeds: a command beyond the step limit (1.5 m/s) for 1 s, then the torso's
-  forward speed (ground truth) over ``--seconds``;
-* ``curve``: the same with a 25 deg/s turn (the dribbles follow turning directions);
-* ``stop``: full speed for 2.5 s, then a zero command for 1.5 s (braking from full speed).
-
-Score: the straight runs' mean forward speed plus half the curve's, minus ``--fall-penalty``
-per run that fell (a fall scores no speed). The loop is ``learning/param_search.py``'s: each
-generation plays its own seeds, and the result is the search's mean, written every generation
-to ``--out`` as ``--set`` overrides for the benchmarks.
+Scenarios (each a fresh in-process session, the robot walking with ``walk_velocity`` as
+``benchmarks/locomotion.py`` measures it, on a candidate copy of ``walk.yaml``; see
+:data:`SCENARIOS`): two ``straight`` runs at a command beyond the step limit (1.5 m/s), a
+``curve`` (the same turning at 25 deg/s: the dribbles follow turning directions), ``side``
+(0.4 m/s to the left) and ``turn`` (120 deg/s on the spot), the benchmark's own commands, each
+measured over ``--seconds`` after one second; and a ``stop`` (full speed for 2.5 s, then a zero
+command). Score: the weighted figures (the straight runs' mean forward speed plus half the
+curve's forward and the sideways speed, plus 0.3 per 100 deg/s of turn), a fallen run's none,
+minus ``--fall-penalty`` per fall. Why the side, turn and stop runs: the first search (session
+22) scored only forward runs and found a walk at 1.0 m/s that could no longer turn on the spot
+(13 deg/s, falling in most one-knob variants). The loop is ``learning/param_search.py``'s:
+each generation plays its own seeds, and the result is the search's mean, written every
+generation to ``--out`` as ``--set`` overrides for the benchmarks.
 
 Run: ``nice -n 5 .venv/bin/python -m learning.walk_search --type 0 --minutes 60 --out
 runs/walk_speed/type0.json``; then ``python scripts/walk_speed_probe.py --type 0 --set ...`` and
@@ -29,8 +30,8 @@ printed overrides.
 from __future__ import annotations
 
 import argparse
-import math
 import sys
+import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -40,7 +41,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.walk import WALK_FILE, walk_parameters
-from benchmarks.locomotion import new_driver
+from benchmarks.dribble import with_settings
+from benchmarks.locomotion import measure_velocity, new_driver
 from learning.param_search import Knob, Search, clipped_start, run_search
 
 #: the forward command of the speed runs: beyond every step limit searched
@@ -74,17 +76,27 @@ KNOBS: tuple[Knob, ...] = (
 
 @dataclass(frozen=True)
 class Scenario:
+    """One run: ``walk_velocity(*command)`` from a stand; ``figure`` is what it measures
+    (``forward``, ``side`` in m/s, ``turn`` in deg/s, or ``stop``: the command goes to zero
+    after ``STOP_AFTER_S`` and only a fall counts) and ``weight`` its share of the score."""
+
     name: str
     seed: int
-    turn_deg_s: float = 0.0
-    stop_after_s: float | None = None
+    command: tuple[float, float, float]
+    figure: str
+    weight: float
 
+
+#: seconds of full speed before a ``stop`` scenario's zero command (1.5 s follow)
+STOP_AFTER_S = 2.5
 
 SCENARIOS: tuple[Scenario, ...] = (
-    Scenario("straight", 0),
-    Scenario("straight", 1),
-    Scenario("curve", 2, turn_deg_s=25.0),
-    Scenario("stop", 3, stop_after_s=2.5),
+    Scenario("straight", 0, (FULL_COMMAND, 0.0, 0.0), "forward", 0.5),
+    Scenario("straight", 1, (FULL_COMMAND, 0.0, 0.0), "forward", 0.5),
+    Scenario("curve", 2, (FULL_COMMAND, 0.0, 25.0), "forward", 0.5),
+    Scenario("side", 3, (0.0, 0.4, 0.0), "side", 0.5),
+    Scenario("turn", 4, (0.0, 0.0, 120.0), "turn", 0.003),
+    Scenario("stop", 5, (FULL_COMMAND, 0.0, 0.0), "stop", 0.0),
 )
 
 
@@ -93,9 +105,10 @@ def typed_knobs(robot_type: int) -> tuple[Knob, ...]:
     return tuple(replace(k, key=f"type{robot_type}.{k.key}") for k in KNOBS)
 
 
-def start_values(robot_type: int) -> np.ndarray:
-    """The packaged walk's value of every knob for ``robot_type`` (clipped into its range)."""
-    params = walk_parameters(robot_type, WALK_FILE)
+def start_values(robot_type: int, path: Path = WALK_FILE) -> np.ndarray:
+    """The walk's value of every knob for ``robot_type`` in ``path`` (clipped into its
+    range)."""
+    params = walk_parameters(robot_type, path)
     values = []
     for knob in KNOBS:
         owner = params.step if knob.key.startswith("step.") else params
@@ -103,35 +116,29 @@ def start_values(robot_type: int) -> np.ndarray:
     return clipped_start(KNOBS, values)
 
 
-def run_scenario(robot_type: int, walk_file: Path, scenario: Scenario, seconds: float) -> float:
-    """Forward speed (m/s, ground truth) of one scenario; ``-1.0`` when the robot fell (a
-    ``stop`` run returns 0 standing: it only tests the braking)."""
+def run_scenario(
+    robot_type: int, walk_file: Path, scenario: Scenario, seconds: float
+) -> tuple[float, bool]:
+    """(the scenario's figure, whether the robot fell); the benchmark's own
+    :func:`~benchmarks.locomotion.measure_velocity` but for the ``stop``."""
+    if scenario.figure != "stop":
+        forward, side, turn, fell = measure_velocity(
+            robot_type, scenario.command, seconds, scenario.seed, walk_file
+        )
+        return {"forward": forward, "side": side, "turn": turn}[scenario.figure], fell
     driver = new_driver(robot_type, scenario.seed, walk_file=walk_file)
     try:
-        command = (FULL_COMMAND, 0.0, scenario.turn_deg_s)
-        for _ in range(CYCLES_PER_SECOND):
-            driver.run("walk_velocity", *command)
+        for cycle in range(round((STOP_AFTER_S + 1.5) * CYCLES_PER_SECOND)):
+            moving = cycle < STOP_AFTER_S * CYCLES_PER_SECOND
+            driver.run("walk_velocity", *(scenario.command if moving else (0.0, 0.0, 0.0)))
             if driver.fallen():
-                return -1.0
-        x0, y0, h0 = driver.ground_pose()
-        stop = scenario.stop_after_s
-        total = seconds if stop is None else stop + 0.5
-        for cycle in range(round(total * CYCLES_PER_SECOND)):
-            if stop is not None and cycle >= (stop - 1.0) * CYCLES_PER_SECOND:
-                command = (0.0, 0.0, 0.0)
-            driver.run("walk_velocity", *command)
-            if driver.fallen():
-                return -1.0
-        if stop is not None:
-            return 0.0
-        x1, y1, _ = driver.ground_pose()
-        c, s = math.cos(math.radians(h0)), math.sin(math.radians(h0))
-        return (c * (x1 - x0) + s * (y1 - y0)) / seconds
+                return 0.0, True
+        return 0.0, False
     finally:
         driver.session.close()
 
 
-def _worker(arguments: tuple[int, str, int, float, int]) -> float:
+def _worker(arguments: tuple[int, str, int, float, int]) -> tuple[float, bool]:
     robot_type, walk_file, index, seconds, seed_offset = arguments
     scenario = SCENARIOS[index]
     scenario = replace(scenario, seed=scenario.seed + seed_offset)
@@ -141,40 +148,46 @@ def _worker(arguments: tuple[int, str, int, float, int]) -> float:
 @dataclass(frozen=True)
 class Evaluation:
     score: float
-    straight_mps: float
-    curve_mps: float
+    #: the figure of each scenario name (the mean over its runs; 0 for a fallen run)
+    figures: dict[str, float]
     falls: int
 
     def describe(self) -> str:
-        return (
-            f"score {self.score:+.3f} straight {self.straight_mps:.3f} m/s "
-            f"curve {self.curve_mps:.3f} falls {self.falls}"
+        shown = " ".join(
+            f"{name} {value:.1f}" if name == "turn" else f"{name} {value:.3f}"
+            for name, value in self.figures.items()
+            if name != "stop"
         )
+        return f"score {self.score:+.3f} {shown} falls {self.falls}"
 
 
-def score_runs(speeds: Sequence[float], fall_penalty: float) -> Evaluation:
-    """A candidate's score from its scenario results (in :data:`SCENARIOS` order)."""
-    falls = sum(1 for v in speeds if v < 0.0)
-    kept = [max(0.0, v) for v in speeds]
-    straight = [kept[i] for i, s in enumerate(SCENARIOS) if s.name == "straight"]
-    curve = [kept[i] for i, s in enumerate(SCENARIOS) if s.name == "curve"]
-    straight_mps = sum(straight) / len(straight)
-    curve_mps = sum(curve) / len(curve) if curve else 0.0
-    score = straight_mps + 0.5 * curve_mps - fall_penalty * falls
-    return Evaluation(score, straight_mps, curve_mps, falls)
+def score_runs(results: Sequence[tuple[float, bool]], fall_penalty: float) -> Evaluation:
+    """A candidate's score from its scenario results (in :data:`SCENARIOS` order): the
+    weighted figures (none for a run that fell) less ``fall_penalty`` per fall."""
+    falls = sum(1 for _, fell in results if fell)
+    kept = [0.0 if fell else value for value, fell in results]
+    score = sum(s.weight * v for s, v in zip(SCENARIOS, kept, strict=True))
+    figures: dict[str, list[float]] = {}
+    for scenario, value in zip(SCENARIOS, kept, strict=True):
+        figures.setdefault(scenario.name, []).append(value)
+    means = {name: sum(v) / len(v) for name, v in figures.items()}
+    return Evaluation(score - fall_penalty * falls, means, falls)
 
 
-def walk_search(robot_type: int, seconds: float, fall_penalty: float) -> Search:
-    """The search of ``robot_type``'s walk (see the module docstring)."""
+def walk_search(
+    robot_type: int, seconds: float, fall_penalty: float, source: Path = WALK_FILE
+) -> Search:
+    """The search of ``robot_type``'s walk from the settings in ``source`` (see the module
+    docstring)."""
     return Search(
         knobs=typed_knobs(robot_type),
-        start=start_values(robot_type),
-        source=WALK_FILE,
+        start=start_values(robot_type, source),
+        source=source,
         tasks=lambda path, offset: [
             (robot_type, path, i, seconds, offset) for i in range(len(SCENARIOS))
         ],
         worker=_worker,
-        score=lambda speeds: score_runs(speeds, fall_penalty),
+        score=lambda results: score_runs(results, fall_penalty),
     )
 
 
@@ -188,12 +201,29 @@ def main() -> None:
     parser.add_argument("--population", type=int, default=None)
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument(
+        "--start-set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="start from walk.yaml with these keys changed (an earlier search's result)",
+    )
     parser.add_argument("--out", type=Path, required=True)
     args = parser.parse_args()
-    search = walk_search(args.type, args.seconds, args.fall_penalty)
-    run_search(
-        search, args.out, args.minutes, args.generations, args.population, args.jobs, args.seed
-    )
+    with tempfile.TemporaryDirectory() as folder:
+        source = WALK_FILE
+        if args.start_set:
+            source = with_settings(args.start_set, Path(folder), WALK_FILE)
+        search = walk_search(args.type, args.seconds, args.fall_penalty, source)
+        run_search(
+            search,
+            args.out,
+            args.minutes,
+            args.generations,
+            args.population,
+            args.jobs,
+            args.seed,
+        )
 
 
 if __name__ == "__main__":

@@ -23,14 +23,20 @@ def test_the_search_starts_from_the_packaged_walk_and_writes_it_back_unchanged(
     assert walk_parameters(robot_type, path) == walk_parameters(robot_type)
 
 
-def test_a_fall_costs_the_penalty_and_its_speed():
+def test_a_fall_costs_the_penalty_and_its_figure():
+    figures = {"forward": 0.8, "side": 0.3, "turn": 70.0, "stop": 0.0}
+    upright = [(figures[s.figure], False) for s in SCENARIOS]
+    scored = score_runs(upright, fall_penalty=0.6)
+    assert scored.falls == 0
+    weights = {s.name: s.weight for s in SCENARIOS}
+    expected = 0.8 + weights["curve"] * 0.8 + weights["side"] * 0.3 + weights["turn"] * 70.0
+    assert scored.score == pytest.approx(expected)
+    assert scored.figures["straight"] == pytest.approx(0.8)
     names = [s.name for s in SCENARIOS]
-    speeds = [0.8 if n == "straight" else 0.6 if n == "curve" else 0.0 for n in names]
-    upright = score_runs(speeds, fall_penalty=0.6)
-    assert upright.falls == 0
-    assert upright.score == pytest.approx(0.8 + 0.5 * 0.6)
-    speeds[names.index("straight")] = -1.0
-    fallen = score_runs(speeds, fall_penalty=0.6)
-    assert fallen.falls == 1
-    assert fallen.straight_mps == pytest.approx(0.4)
-    assert fallen.score == pytest.approx(0.4 + 0.3 - 0.6)
+    fallen = list(upright)
+    fallen[names.index("straight")] = (0.9, True)  # the distance before a fall does not count
+    fallen[names.index("stop")] = (0.0, True)
+    scored = score_runs(fallen, fall_penalty=0.6)
+    assert scored.falls == 2
+    assert scored.figures["straight"] == pytest.approx(0.4)
+    assert scored.score == pytest.approx(expected - 0.4 - 2 * 0.6)
