@@ -58,7 +58,7 @@ WALK_KNOBS: tuple[Knob, ...] = tuple(k for k in walk_search.KNOBS if k.key in WA
 CONTROLLER_KNOBS: tuple[Knob, ...] = (
     Knob("speed", 0.4, 1.4, 0.1),
     Knob("max_speed", 0.4, 1.4, 0.1),
-    Knob("beyond_reach_speed", 0.0, 1.4, 0.15),
+    Knob("beyond_reach_speed", 0.0, 2.0, 0.15),
     Knob("ball_ahead", 0.15, 0.4, 0.03),
     Knob("ball_side", 0.0, 0.08, 0.01),
     Knob("ahead_gain", 0.0, 4.0, 0.4),
