@@ -7,7 +7,9 @@ and falls together, which one knob at a time does not explore. This searches the
 (the loop of ``learning/param_search.py``) on the dribble benchmark's own runs.
 
 Each candidate dribbles ``--runs`` times (``benchmarks.dribble.run_dribble``: the robot 0.3 m
-behind the ball at the centre, ``--distance`` m along x, fresh seeds each generation). Score:
+behind the ball at the centre, ``--distance`` m along x, fresh seeds each generation), facing
+the ``--angles`` in turn (the first LFDL result, searched on straight starts only, lost the
+ball and fell after 90 deg starts). Score:
 the runs' mean speed (the ball's, along the direction; a run that did not arrive scores its
 distance over its time, a run that fell none: the ball runs on while the robot falls, and
 with its speed counted the first search learnt to kick the ball and fall), minus
@@ -103,13 +105,16 @@ class Evaluation:
         )
 
 
-#: (kind, robot type, distance, seed, dribble file) -> (speed m/s, losses, fell)
-Task = tuple[str, int, float, int, str]
+#: (kind, robot type, distance, seed, start angle deg, dribble file) -> (speed m/s, losses,
+#: fell)
+Task = tuple[str, int, float, int, float, str]
 
 
 def _worker(task: Task) -> tuple[float, int, bool]:
-    kind, robot_type, distance, seed, path = task
-    run = run_dribble(kind, robot_type, distance, seed=seed, data_file=Path(path))
+    kind, robot_type, distance, seed, angle, path = task
+    run = run_dribble(
+        kind, robot_type, distance, seed=seed, data_file=Path(path), start_angle_deg=angle
+    )
     speed = run.distance / run.seconds if run.seconds > 0 else 0.0
     return max(0.0, speed), run.ball_losses, run.fell
 
@@ -133,14 +138,17 @@ def dribble_search(
     loss_penalty: float,
     fall_penalty: float,
     source: Path = DRIBBLE_FILE,
+    angles: Sequence[float] = (0.0,),
 ) -> Search:
-    """The search of gait ``kind`` on ``robot_type`` from the settings in ``source``."""
+    """The search of gait ``kind`` on ``robot_type`` from the settings in ``source``; run
+    ``k`` starts at ``angles[k % len(angles)]`` degrees from the direction."""
     return Search(
         knobs=typed_knobs(kind, robot_type),
         start=start_values(kind, robot_type, source),
         source=source,
         tasks=lambda path, offset: [
-            (kind, robot_type, distance, offset + k, path) for k in range(runs)
+            (kind, robot_type, distance, offset + k, angles[k % len(angles)], path)
+            for k in range(runs)
         ],
         worker=_worker,
         score=lambda results: score_runs(results, loss_penalty, fall_penalty),
@@ -155,6 +163,13 @@ def main() -> None:
     parser.add_argument("--distance", type=float, default=8.0)
     parser.add_argument("--loss-penalty", type=float, default=0.3)
     parser.add_argument("--fall-penalty", type=float, default=1.0)
+    parser.add_argument(
+        "--angles",
+        type=float,
+        nargs="+",
+        default=[0.0],
+        help="start angles (deg) the runs take in turn: the episodes start at any orientation",
+    )
     parser.add_argument("--start-set", action="append", default=[], metavar="KEY=VALUE")
     parser.add_argument("--minutes", type=float, default=60.0)
     parser.add_argument("--generations", type=int, default=1000)
@@ -173,6 +188,7 @@ def main() -> None:
             args.loss_penalty,
             args.fall_penalty,
             source,
+            args.angles,
         )
         run_search(
             search,

@@ -59,7 +59,7 @@ KNOBS: tuple[Knob, ...] = (
     Knob("step.torso_height", 0.29, 0.40, 0.012),
     Knob("step.foot_forward", -0.05, 0.02, 0.01),
     Knob("step.lean", 0.0, 0.3, 0.04),
-    Knob("step.speed_lean", -0.05, 0.25, 0.04),
+    Knob("step.speed_lean", -0.05, 0.4, 0.04),
     Knob("step.swing_ramp", 0.03, 0.45, 0.06),
     Knob("step.speed_heel_strike", 0.0, 0.5, 0.05),
     Knob("step.heel_strike_from", 0.2, 0.9, 0.1),
