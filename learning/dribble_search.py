@@ -54,7 +54,6 @@ WALK_KEYS = (
     "landing_pitch_gain",
     "arm_swing_deg",
 )
-WALK_KNOBS: tuple[Knob, ...] = tuple(k for k in walk_search.KNOBS if k.key in WALK_KEYS)
 
 #: controller knobs (keys of ``<kind>.controller.type<N>``)
 CONTROLLER_KNOBS: tuple[Knob, ...] = (
@@ -70,25 +69,31 @@ CONTROLLER_KNOBS: tuple[Knob, ...] = (
 )
 
 
-def typed_knobs(kind: str, robot_type: int) -> tuple[Knob, ...]:
-    """The knobs with their keys in the gait's type block."""
-    walk = tuple(replace(k, key=f"{kind}.walk.type{robot_type}.{k.key}") for k in WALK_KNOBS)
+def typed_knobs(
+    kind: str, robot_type: int, walk_keys: Sequence[str] = WALK_KEYS
+) -> tuple[Knob, ...]:
+    """The knobs (the walk's of ``walk_keys``) with their keys in the gait's type block."""
+    chosen = [k for k in walk_search.KNOBS if k.key in walk_keys]
+    walk = tuple(replace(k, key=f"{kind}.walk.type{robot_type}.{k.key}") for k in chosen)
     controller = tuple(
         replace(k, key=f"{kind}.controller.type{robot_type}.{k.key}") for k in CONTROLLER_KNOBS
     )
     return walk + controller
 
 
-def start_values(kind: str, robot_type: int, path: Path = DRIBBLE_FILE) -> np.ndarray:
+def start_values(
+    kind: str, robot_type: int, path: Path = DRIBBLE_FILE, walk_keys: Sequence[str] = WALK_KEYS
+) -> np.ndarray:
     """The gait's resolved value of every knob in ``path`` (clipped into its range)."""
     walk = dribble_walk_parameters(kind, robot_type, path)
     gait = dribble_gait(kind, robot_type, path)
+    walk_knobs = [k for k in walk_search.KNOBS if k.key in walk_keys]
     values = []
-    for knob in WALK_KNOBS:
+    for knob in walk_knobs:
         owner = walk.step if knob.key.startswith("step.") else walk
         values.append(getattr(owner, knob.key.removeprefix("step.")))
     values += [getattr(gait, k.key) for k in CONTROLLER_KNOBS]
-    return clipped_start(WALK_KNOBS + CONTROLLER_KNOBS, values)
+    return clipped_start((*walk_knobs, *CONTROLLER_KNOBS), values)
 
 
 @dataclass(frozen=True)
@@ -139,12 +144,13 @@ def dribble_search(
     fall_penalty: float,
     source: Path = DRIBBLE_FILE,
     angles: Sequence[float] = (0.0,),
+    walk_keys: Sequence[str] = WALK_KEYS,
 ) -> Search:
     """The search of gait ``kind`` on ``robot_type`` from the settings in ``source``; run
     ``k`` starts at ``angles[k % len(angles)]`` degrees from the direction."""
     return Search(
-        knobs=typed_knobs(kind, robot_type),
-        start=start_values(kind, robot_type, source),
+        knobs=typed_knobs(kind, robot_type, walk_keys),
+        start=start_values(kind, robot_type, source, walk_keys),
         source=source,
         tasks=lambda path, offset: [
             (kind, robot_type, distance, offset + k, angles[k % len(angles)], path)
@@ -170,6 +176,12 @@ def main() -> None:
         default=[0.0],
         help="start angles (deg) the runs take in turn: the episodes start at any orientation",
     )
+    parser.add_argument(
+        "--speed-knobs",
+        action="store_true",
+        help="of the walk, search only the knobs that act walking forward (walk_search's "
+        "SPEED_KEYS): turning and slow steps keep the gait's walk",
+    )
     parser.add_argument("--start-set", action="append", default=[], metavar="KEY=VALUE")
     parser.add_argument("--minutes", type=float, default=60.0)
     parser.add_argument("--generations", type=int, default=1000)
@@ -189,6 +201,7 @@ def main() -> None:
             args.fall_penalty,
             source,
             args.angles,
+            walk_search.SPEED_KEYS if args.speed_knobs else WALK_KEYS,
         )
         run_search(
             search,
