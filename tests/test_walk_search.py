@@ -24,7 +24,7 @@ def test_the_search_starts_from_the_packaged_walk_and_writes_it_back_unchanged(
 
 
 def test_a_fall_costs_the_penalty_and_its_figure():
-    figures = {"forward": 0.8, "side": 0.3, "turn": 70.0, "stop": 0.0}
+    figures = {"forward": 0.8, "side": 0.3, "turn": 70.0, "stop": 0.0, "mixed": 0.0}
     upright = [(figures[s.figure], False) for s in SCENARIOS]
     scored = score_runs(upright, fall_penalty=0.6)
     assert scored.falls == 0
@@ -40,3 +40,13 @@ def test_a_fall_costs_the_penalty_and_its_figure():
     assert scored.falls == 2
     assert scored.figures["straight"] == pytest.approx(0.4)
     assert scored.score == pytest.approx(expected - 0.4 - 2 * 0.6)
+
+
+def test_mixed_runs_draw_reproducible_commands_within_the_environments_ranges():
+    from learning.walk_search import MIXED_EVERY_S, MIXED_S, mixed_commands
+
+    commands = mixed_commands(6)
+    assert commands == mixed_commands(6) != mixed_commands(7)
+    assert len(commands) == round(MIXED_S / MIXED_EVERY_S)
+    for forward, side, turn in commands:
+        assert 0.0 <= forward <= 1.0 and abs(side) <= 0.2 and abs(turn) <= 45.0
