@@ -1,0 +1,61 @@
+"""Falls of the walk under random command sequences: the walk residual environment's episodes.
+
+Each episode (``naosoccer/WalkResidual-v0`` with zero residual, so the packaged walk alone) starts
+from a standing snapshot and changes its ``walk_velocity``-like command every ``--every``
+seconds: forward 0-1 m/s, half of the commands with up to +-0.2 m/s sideways and +-45 deg/s
+turning. Prints the falls and the seeds that fell. Why: the benchmark's walk figures hold one
+command per run and walk to targets at 0.65 m/s at most; session 22's searched fast type-0 gait
+passed those and fell here (3 of 30, seeds 0-29, where the packaged walk falls none).
+
+Run: ``python scripts/walk_command_falls.py --type 0 --seeds 0 30`` (the packaged walk)
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from learning.envs.walk import WalkResidualEnv
+
+
+def command_falls(robot_type: int, seeds: range, seconds: float, every: float) -> list[int]:
+    """The seeds whose episode ended in a fall."""
+    env = WalkResidualEnv(
+        {"robot_types": [robot_type], "episode_s": seconds, "command_every_s": every}
+    )
+    fell = []
+    try:
+        zero = np.zeros(env.action_space.shape, dtype=np.float32)
+        for seed in seeds:
+            env.reset(seed=seed)
+            while True:
+                _, _, terminated, truncated, _ = env.step(zero)
+                if terminated or truncated:
+                    break
+            if terminated:
+                fell.append(seed)
+    finally:
+        env.close()
+    return fell
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--type", type=int, default=0)
+    parser.add_argument("--seeds", type=int, nargs=2, default=[0, 30], metavar=("FIRST", "END"))
+    parser.add_argument("--seconds", type=float, default=6.0, help="episode length")
+    parser.add_argument("--every", type=float, default=1.5, help="seconds between commands")
+    args = parser.parse_args()
+    seeds = range(*args.seeds)
+    fell = command_falls(args.type, seeds, args.seconds, args.every)
+    print(f"command_falls[type{args.type}]: {len(fell)} of {len(seeds)}")
+    print(f"fell_seeds[type{args.type}]: {' '.join(map(str, fell)) or '-'}")
+
+
+if __name__ == "__main__":
+    main()
