@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -36,9 +35,15 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.dribble import DRIBBLE_FILE, dribble_gait, dribble_walk_parameters
-from benchmarks.dribble import run_dribble, with_settings
+from benchmarks.dribble import run_dribble
 from learning import walk_search
-from learning.param_search import Knob, Search, clipped_start, run_search
+from learning.param_search import (
+    Knob,
+    Search,
+    add_search_arguments,
+    clipped_start,
+    run_from_arguments,
+)
 
 #: walk knobs (keys of ``<kind>.walk.type<N>``): the walk search's that shape the gait, not its
 #: balance gains (the dribbles keep theirs)
@@ -73,8 +78,10 @@ def typed_knobs(
     kind: str, robot_type: int, walk_keys: Sequence[str] = WALK_KEYS
 ) -> tuple[Knob, ...]:
     """The knobs (the walk's of ``walk_keys``) with their keys in the gait's type block."""
-    chosen = [k for k in walk_search.KNOBS if k.key in walk_keys]
-    walk = tuple(replace(k, key=f"{kind}.walk.type{robot_type}.{k.key}") for k in chosen)
+    walk = tuple(
+        replace(k, key=f"{kind}.walk.type{robot_type}.{k.key}")
+        for k in walk_search.chosen_knobs(walk_keys)
+    )
     controller = tuple(
         replace(k, key=f"{kind}.controller.type{robot_type}.{k.key}") for k in CONTROLLER_KNOBS
     )
@@ -85,13 +92,9 @@ def start_values(
     kind: str, robot_type: int, path: Path = DRIBBLE_FILE, walk_keys: Sequence[str] = WALK_KEYS
 ) -> np.ndarray:
     """The gait's resolved value of every knob in ``path`` (clipped into its range)."""
-    walk = dribble_walk_parameters(kind, robot_type, path)
+    walk_knobs = walk_search.chosen_knobs(walk_keys)
     gait = dribble_gait(kind, robot_type, path)
-    walk_knobs = [k for k in walk_search.KNOBS if k.key in walk_keys]
-    values = []
-    for knob in walk_knobs:
-        owner = walk.step if knob.key.startswith("step.") else walk
-        values.append(getattr(owner, knob.key.removeprefix("step.")))
+    values = walk_search.knob_values(dribble_walk_parameters(kind, robot_type, path), walk_knobs)
     values += [getattr(gait, k.key) for k in CONTROLLER_KNOBS]
     return clipped_start((*walk_knobs, *CONTROLLER_KNOBS), values)
 
@@ -182,17 +185,13 @@ def main() -> None:
         help="of the walk, search only the knobs that act walking forward (walk_search's "
         "SPEED_KEYS): turning and slow steps keep the gait's walk",
     )
-    parser.add_argument("--start-set", action="append", default=[], metavar="KEY=VALUE")
-    parser.add_argument("--minutes", type=float, default=60.0)
-    parser.add_argument("--generations", type=int, default=1000)
-    parser.add_argument("--population", type=int, default=None)
-    parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--out", type=Path, required=True)
+    add_search_arguments(parser)
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as folder:
-        source = with_settings(args.start_set, Path(folder)) if args.start_set else DRIBBLE_FILE
-        search = dribble_search(
+    walk_keys = walk_search.SPEED_KEYS if args.speed_knobs else WALK_KEYS
+    run_from_arguments(
+        args,
+        DRIBBLE_FILE,
+        lambda source: dribble_search(
             args.kind,
             args.type,
             args.runs,
@@ -201,17 +200,9 @@ def main() -> None:
             args.fall_penalty,
             source,
             args.angles,
-            walk_search.SPEED_KEYS if args.speed_knobs else WALK_KEYS,
-        )
-        run_search(
-            search,
-            args.out,
-            args.minutes,
-            args.generations,
-            args.population,
-            args.jobs,
-            args.seed,
-        )
+            walk_keys,
+        ),
+    )
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ generation and written to a JSON file as ``--set`` strings.
 
 from __future__ import annotations
 
+import argparse
 import json
 import tempfile
 import time
@@ -156,3 +157,40 @@ def _save(out: Path, knobs: Sequence[Knob], es: SNES, mean: Scored, generation: 
         "spread": [float(v) for v in es.spread],
     }
     out.write_text(json.dumps(data, indent=1) + "\n")
+
+
+def add_search_arguments(parser: argparse.ArgumentParser) -> None:
+    """The options every search takes: where it starts, how long it runs, its result file."""
+    parser.add_argument(
+        "--start-set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="start from the settings file with these keys changed (an earlier result)",
+    )
+    parser.add_argument("--minutes", type=float, default=60.0)
+    parser.add_argument("--generations", type=int, default=1000)
+    parser.add_argument("--population", type=int, default=None)
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--out", type=Path, required=True)
+
+
+def run_from_arguments(
+    args: argparse.Namespace, settings: Path, build: Callable[[Path], Search]
+) -> np.ndarray:
+    """Run the search ``build`` makes from ``settings`` (a copy with ``--start-set``'s keys
+    changed, if any) with the options of :func:`add_search_arguments`; returns the mean."""
+    with tempfile.TemporaryDirectory() as folder:
+        source = settings
+        if args.start_set:
+            source = with_settings(args.start_set, Path(folder), settings)
+        return run_search(
+            build(source),
+            args.out,
+            args.minutes,
+            args.generations,
+            args.population,
+            args.jobs,
+            args.seed,
+        )

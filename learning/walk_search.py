@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -41,10 +40,15 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from behaviors.walk import WALK_FILE, walk_parameters
-from benchmarks.dribble import with_settings
+from behaviors.walk import WALK_FILE, WalkParameters, walk_parameters
 from benchmarks.locomotion import measure_velocity, new_driver
-from learning.param_search import Knob, Search, clipped_start, run_search
+from learning.param_search import (
+    Knob,
+    Search,
+    add_search_arguments,
+    clipped_start,
+    run_from_arguments,
+)
 
 #: the forward command of the speed runs: beyond every step limit searched
 FULL_COMMAND = 1.5
@@ -139,11 +143,23 @@ SPEED_KEYS = (
 )
 
 
+def chosen_knobs(keys: Sequence[str] | None = None) -> list[Knob]:
+    """:data:`KNOBS` (those of ``keys`` only, if given), keys as in a type's block."""
+    return [k for k in KNOBS if keys is None or k.key in keys]
+
+
 def typed_knobs(robot_type: int, keys: Sequence[str] | None = None) -> tuple[Knob, ...]:
-    """:data:`KNOBS` (those of ``keys`` only, if given) with their keys in ``robot_type``'s
-    block."""
-    chosen = [k for k in KNOBS if keys is None or k.key in keys]
-    return tuple(replace(k, key=f"type{robot_type}.{k.key}") for k in chosen)
+    """:func:`chosen_knobs` with their keys in ``robot_type``'s block."""
+    return tuple(replace(k, key=f"type{robot_type}.{k.key}") for k in chosen_knobs(keys))
+
+
+def knob_values(params: WalkParameters, knobs: Sequence[Knob]) -> list[float]:
+    """The values of walk ``knobs`` (keys as in a type's block) in ``params``."""
+    values = []
+    for knob in knobs:
+        owner = params.step if knob.key.startswith("step.") else params
+        values.append(getattr(owner, knob.key.removeprefix("step.")))
+    return values
 
 
 def start_values(
@@ -151,13 +167,8 @@ def start_values(
 ) -> np.ndarray:
     """The walk's value of every knob (of ``keys``, if given) for ``robot_type`` in ``path``
     (clipped into its range)."""
-    params = walk_parameters(robot_type, path)
-    knobs = [k for k in KNOBS if keys is None or k.key in keys]
-    values = []
-    for knob in knobs:
-        owner = params.step if knob.key.startswith("step.") else params
-        values.append(getattr(owner, knob.key.removeprefix("step.")))
-    return clipped_start(knobs, values)
+    knobs = chosen_knobs(keys)
+    return clipped_start(knobs, knob_values(walk_parameters(robot_type, path), knobs))
 
 
 def run_scenario(
@@ -247,42 +258,21 @@ def walk_search(
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--type", type=int, default=0)
-    parser.add_argument("--minutes", type=float, default=60.0)
-    parser.add_argument("--generations", type=int, default=1000)
     parser.add_argument("--seconds", type=float, default=3.0, help="measured seconds a run")
     parser.add_argument("--fall-penalty", type=float, default=0.6)
-    parser.add_argument("--population", type=int, default=None)
-    parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument(
-        "--start-set",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="start from walk.yaml with these keys changed (an earlier search's result)",
-    )
     parser.add_argument(
         "--speed-knobs",
         action="store_true",
         help="search only the knobs that act when walking forward (SPEED_KEYS)",
     )
-    parser.add_argument("--out", type=Path, required=True)
+    add_search_arguments(parser)
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as folder:
-        source = WALK_FILE
-        if args.start_set:
-            source = with_settings(args.start_set, Path(folder), WALK_FILE)
-        keys = SPEED_KEYS if args.speed_knobs else None
-        search = walk_search(args.type, args.seconds, args.fall_penalty, source, keys)
-        run_search(
-            search,
-            args.out,
-            args.minutes,
-            args.generations,
-            args.population,
-            args.jobs,
-            args.seed,
-        )
+    keys = SPEED_KEYS if args.speed_knobs else None
+    run_from_arguments(
+        args,
+        WALK_FILE,
+        lambda source: walk_search(args.type, args.seconds, args.fall_penalty, source, keys),
+    )
 
 
 if __name__ == "__main__":
