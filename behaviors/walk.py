@@ -256,16 +256,14 @@ def walk_parameters(
 ) -> WalkParameters:
     """The walk parameters of ``robot_type``: the file's ``default`` block overridden by its
     ``type<N>`` block (both may hold a ``step`` sub-block), and with ``inside_skill`` (the walk
-    run by another skill) the ``inside_skills`` block's keys on top, then its own ``type<N>``
-    sub-block's (a type whose walk changed after the kick's approach was tuned keeps the old
-    values there); there the keys of :data:`OFF_INSIDE_SKILLS` keep their defaults unless
-    that block sets them."""
+    run by another skill) the ``inside_skills`` block's keys on top; there the keys of
+    :data:`OFF_INSIDE_SKILLS` keep their defaults unless that block sets them."""
     if robot_type not in ROBOT_TYPES:
         raise ValueError(f"robot type must be one of {ROBOT_TYPES}, got {robot_type!r}")
     data = yaml.safe_load(path.read_text()) or {}
     base = dict(data.get("default") or {})
     own = dict(data.get(f"type{robot_type}") or {})
-    nested = _nested_block(data.get("inside_skills") or {}, robot_type) if inside_skill else {}
+    nested = dict(data.get("inside_skills") or {}) if inside_skill else {}
     step = {**(base.get("step") or {}), **(own.get("step") or {}), **(nested.get("step") or {})}
     merged = {**base, **own, **nested, "step": step}
     if inside_skill:
@@ -273,18 +271,6 @@ def walk_parameters(
             if name not in nested:
                 merged.pop(name, None)
     return _read_parameters(merged, f"{path} (type{robot_type})")
-
-
-def _nested_block(block: dict[str, Any], robot_type: int) -> dict[str, Any]:
-    """The ``inside_skills`` keys for ``robot_type``: the block's own keys, then its
-    ``type<N>`` sub-block's (one level deep for ``step``)."""
-    shared = {k: v for k, v in block.items() if not (k.startswith("type") and k[4:].isdigit())}
-    own = dict(block.get(f"type{robot_type}") or {})
-    step = {**(shared.get("step") or {}), **(own.get("step") or {})}
-    merged = {**shared, **own}
-    if step:
-        merged["step"] = step
-    return merged
 
 
 def norm_limited(command: StepCommand, step: StepParameters, norm: float) -> StepCommand:

@@ -798,24 +798,3 @@ def test_the_arm_swing_follows_the_opposite_leg_and_grows_with_speed():
     assert ends and all(e == pytest.approx(10.0, abs=0.5) for e in ends)
     still = swings(1.0, replace(params, arm_swing_deg=0.0))
     assert {(r, le) for _, _, r, le in still} == {(base, base)}
-
-
-def test_a_type_block_inside_skills_overrides_only_that_type(tmp_path):
-    """``inside_skills.type<N>`` keys apply to that type's walk inside another skill only,
-    on top of the shared ``inside_skills`` keys (a ``step`` sub-block merges key by key)."""
-    path = with_settings(
-        [
-            "inside_skills.type0.step.max_forward=0.11",
-            "inside_skills.type0.arm_swing_deg=5.0",
-        ],
-        tmp_path,
-        WALK_FILE,
-    )
-    inside0 = walk_parameters(0, path, inside_skill=True)
-    assert inside0.step.max_forward == 0.11 and inside0.arm_swing_deg == 5.0
-    assert inside0.step.speed_heel_strike == 0.0  # the shared inside_skills step key stays
-    assert walk_parameters(0, path) == walk_parameters(0)
-    for other in (1, 2, 3, 4):
-        assert walk_parameters(other, path, inside_skill=True) == walk_parameters(
-            other, inside_skill=True
-        )
