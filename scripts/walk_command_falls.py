@@ -16,32 +16,22 @@ import argparse
 import sys
 from pathlib import Path
 
-import numpy as np
-
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from learning.envs.walk import WalkResidualEnv
+from learning.walk_eval import run_episode
 
 
 def command_falls(robot_type: int, seeds: range, seconds: float, every: float) -> list[int]:
-    """The seeds whose episode ended in a fall."""
+    """The seeds whose episode ended in a fall (``learning.walk_eval``'s episodes, no
+    policy: the residual is zero)."""
     env = WalkResidualEnv(
         {"robot_types": [robot_type], "episode_s": seconds, "command_every_s": every}
     )
-    fell = []
     try:
-        zero = np.zeros(env.action_space.shape, dtype=np.float32)
-        for seed in seeds:
-            env.reset(seed=seed)
-            while True:
-                _, _, terminated, truncated, _ = env.step(zero)
-                if terminated or truncated:
-                    break
-            if terminated:
-                fell.append(seed)
+        return [seed for seed in seeds if run_episode(env, None, seed, {})[1]]
     finally:
         env.close()
-    return fell
 
 
 def main() -> None:
