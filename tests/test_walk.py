@@ -180,9 +180,34 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
         "go_to_landing_roll_lean_gain": own.go_to_landing_roll_lean_gain,
         "go_to_settle_frames": own.go_to_settle_frames,
         "go_to_max_backward_speed": own.go_to_max_backward_speed,
-        "step": replace(inside.step, speed_heel_strike=own.step.speed_heel_strike),
+        "arm_swing_deg": own.arm_swing_deg,
+        "landing_pitch_lean_share": own.landing_pitch_lean_share,
+        "step_norm": own.step_norm,
+        "step": replace(
+            inside.step,
+            **{k: getattr(own.step, k) for k in (*SPEED_STEP_KEYS, "speed_heel_strike")},
+        ),
     }
     assert replace(inside, **own_only) == own  # nothing else differs
+    if robot_type == 0:  # sessions 22-23's faster forward walk stays out of the kick's approach
+        before = {"max_forward": 0.14, "speed_lean": 0.05, "swing_ramp": 0.125}
+        before |= {"heel_strike_from": 0.6, "heel_pivot": 0.1, "speed_foot_forward": 0.0}
+        assert {k: getattr(inside.step, k) for k in before} == before
+        assert inside.arm_swing_deg == 0.0 < own.arm_swing_deg
+        assert inside.landing_pitch_lean_share == 0.0 < own.landing_pitch_lean_share
+        assert inside.step_norm == 2.0 > own.step_norm
+
+
+#: the step keys of type 0's faster forward walk (sessions 22-23, learning/walk_search.py's
+#: SPEED_KEYS) that the kick's approach keeps at their old values
+SPEED_STEP_KEYS = (
+    "max_forward",
+    "speed_lean",
+    "swing_ramp",
+    "heel_strike_from",
+    "heel_pivot",
+    "speed_foot_forward",
+)
 
 
 def _steady_steps(params: StepParameters, command: StepCommand, steps: int = 6) -> list:
@@ -568,6 +593,40 @@ def _leaning(roll_deg: float) -> SimpleNamespace:
     return SimpleNamespace(world=SimpleNamespace(robot=robot))
 
 
+def _pitched(pitch_deg: float) -> SimpleNamespace:
+    """A context whose robot stands still in the air but for a pitch (+ = forward)."""
+    robot = SimpleNamespace(gyro_deg_s=(0.0, 0.0, 0.0), pitch_deg=pitch_deg, roll_deg=0.0)
+    return SimpleNamespace(world=SimpleNamespace(robot=robot))
+
+
+def test_the_gaits_own_forward_lean_is_no_forward_fall():
+    """Session 23: with ``landing_pitch_lean_share`` 1 the landing shift reads the pitch beyond
+    the lean the step generator means (``speed_lean`` times the speed share), so a torso
+    leaning as planned keeps the step as planned; at 0 (the default) the absolute pitch
+    lengthens it, which ran session 22's fast type-0 gait away from slower commands. Walking
+    to a target (``go_to_landing_pitch_lean_share``, 0 on every type) keeps the absolute pitch."""
+    step = StepParameters(lean=0.1, speed_lean=0.25, max_forward=0.15)
+    base = WalkParameters(step=step, landing_pitch_gain=0.003)
+    planned = StepCommand(0.05)
+    lean_deg = math.degrees(0.25)
+    shifts = {}
+    for share in (0.0, 1.0):
+        engine = WalkEngine(0, replace(base, landing_pitch_lean_share=share))
+        for _ in range(16):  # two full forward steps: the generator's speed share is 1
+            engine.generator.next_targets(StepCommand(0.15))
+        assert engine.generator.speed_share == pytest.approx(1.0)
+        shifts[share] = [
+            engine._balanced(planned, _pitched(p)).forward - planned.forward
+            for p in (lean_deg, lean_deg + 5.0)
+        ]
+    assert shifts[0.0] == pytest.approx([0.003 * lean_deg, 0.003 * (lean_deg + 5.0)])
+    assert shifts[1.0] == pytest.approx([0.0, 0.015])  # only the pitch beyond the lean
+    own = walk_parameters(0)
+    assert WalkVelocitySkill().engine_parameters(own).landing_pitch_lean_share == 1.0
+    assert WalkSkill().engine_parameters(own).landing_pitch_lean_share == 0.0  # to a target
+    assert walk_parameters(0, inside_skill=True).landing_pitch_lean_share == 0.0  # the kick's
+
+
 @pytest.mark.parametrize("roll", (-12.0, 12.0))
 def test_a_rolling_torso_opens_the_swing_foot_on_its_own_side_only(roll):
     """Session 10: types 2 and 4 rolled over to one side turning on the spot, the feet at
@@ -769,7 +828,8 @@ def test_the_arm_swing_follows_the_opposite_leg_and_grows_with_speed():
     """``arm_swing_deg``: while the left leg swings forward the right arm swings from back to
     front and the left arm the other way (the arms' yaw moment against the legs'); half speed
     swings half as far; 0 keeps the arms still."""
-    params = replace(walk_parameters(0), arm_swing_deg=20.0)
+    # the landing shift off: the still robot's level torso lags type 0's planned lean
+    params = replace(walk_parameters(0), arm_swing_deg=20.0, landing_pitch_lean_share=0.0)
     context = SimpleNamespace(world=SimpleNamespace(robot=RobotState(0)))
 
     def swings(velocity: float, engine_params=params) -> list[tuple[bool, int, float, float]]:
@@ -798,3 +858,24 @@ def test_the_arm_swing_follows_the_opposite_leg_and_grows_with_speed():
     assert ends and all(e == pytest.approx(10.0, abs=0.5) for e in ends)
     still = swings(1.0, replace(params, arm_swing_deg=0.0))
     assert {(r, le) for _, _, r, le in still} == {(base, base)}
+
+
+def test_a_type_block_inside_skills_overrides_only_that_type(tmp_path):
+    """``inside_skills.type<N>`` keys apply to that type's walk inside another skill only,
+    on top of the shared ``inside_skills`` keys (a ``step`` sub-block merges key by key)."""
+    path = with_settings(
+        [
+            "inside_skills.type0.step.max_forward=0.11",
+            "inside_skills.type0.arm_swing_deg=5.0",
+        ],
+        tmp_path,
+        WALK_FILE,
+    )
+    inside0 = walk_parameters(0, path, inside_skill=True)
+    assert inside0.step.max_forward == 0.11 and inside0.arm_swing_deg == 5.0
+    assert inside0.step.speed_heel_strike == 0.0  # the shared inside_skills step key stays
+    assert walk_parameters(0, path) == walk_parameters(0)
+    for other in (1, 2, 3, 4):
+        assert walk_parameters(other, path, inside_skill=True) == walk_parameters(
+            other, inside_skill=True
+        )
