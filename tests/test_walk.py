@@ -182,6 +182,7 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
         "go_to_max_backward_speed": own.go_to_max_backward_speed,
         "arm_swing_deg": own.arm_swing_deg,
         "landing_pitch_lean_share": own.landing_pitch_lean_share,
+        "go_to_landing_pitch_lean_share": own.go_to_landing_pitch_lean_share,
         "step_norm": own.step_norm,
         "step": replace(
             inside.step,
