@@ -28,6 +28,7 @@ from behaviors.joint_control import JointCommands
 from behaviors.mirror import mirror_joint_angles
 from behaviors.skill import SkillContext
 from world.nao_model import ROBOT_TYPES
+from world.perception import CYCLE_SECONDS
 from world.robot_state import RobotState
 
 GAIT = DribbleGait()
@@ -413,11 +414,14 @@ def _short_run(
             )
             touched |= {agent.robot.link_name(c[4]) for c in contacts}
             # a touch may end within the cycle's physics substeps: "touching" here is within
-            # NEAR_CONTACT of a robot body at the cycle's end (the ball rolls at most ~2 cm)
-            near = pybullet.getClosestPoints(
-                ball.body_id, agent.robot.body_id, NEAR_CONTACT, physicsClientId=client
-            )
+            # NEAR_CONTACT of a robot body at the cycle's end, plus the way the ball can have
+            # rolled since (its speed for one cycle: session 23's faster LFDL swing sends it
+            # off at up to 2 m/s, 4 cm in a cycle)
             new_speed = ball.speed()
+            reach = NEAR_CONTACT + new_speed * CYCLE_SECONDS
+            near = pybullet.getClosestPoints(
+                ball.body_id, agent.robot.body_id, reach, physicsClientId=client
+            )
             if new_speed > speed + 0.02:
                 speed_ups.append(bool(near))
                 # under the bounce contacts a push can begin and end inside one cycle: the
