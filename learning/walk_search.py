@@ -42,6 +42,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from behaviors.walk import WALK_FILE, WalkParameters, walk_parameters
 from benchmarks.locomotion import measure_velocity, new_driver
+from learning.envs.walk import WalkEnvConfig, draw_command
 from learning.param_search import (
     Knob,
     Search,
@@ -107,10 +108,11 @@ SCENARIOS: tuple[Scenario, ...] = (
     Scenario("mixed", 7, (0.0, 0.0, 0.0), "mixed", 0.0),
 )
 
-#: the ``mixed`` runs: a new command every MIXED_EVERY_S for MIXED_S, drawn as the walk
-#: residual environment draws them (forward 0-1 m/s; half of them also +-0.2 m/s sideways and
-#: +-45 deg/s turning). Why: the third search's walk, scored without them, fell in 3 of 30 such
-#: 6 s episodes of that environment (seeds 0-29, zero residual) where the old walk fell in none
+#: the ``mixed`` runs: a new command every MIXED_EVERY_S for MIXED_S, drawn by the walk
+#: residual environment's own draw in its default ranges (forward 0-1 m/s; half of them also
+#: +-0.2 m/s sideways and +-45 deg/s turning). Why: the third search's walk, scored without
+#: them, fell in 3 of 30 such 6 s episodes of that environment (seeds 0-29, zero residual)
+#: where the old walk fell in none
 MIXED_S = 6.0
 MIXED_EVERY_S = 1.5
 
@@ -118,14 +120,8 @@ MIXED_EVERY_S = 1.5
 def mixed_commands(seed: int) -> list[tuple[float, float, float]]:
     """The commands of a ``mixed`` run, one per MIXED_EVERY_S."""
     rng = np.random.default_rng(seed)
-    out = []
-    for _ in range(round(MIXED_S / MIXED_EVERY_S)):
-        forward = float(rng.uniform(0.0, 1.0))
-        if rng.uniform() < 0.5:
-            out.append((forward, 0.0, 0.0))
-        else:
-            out.append((forward, float(rng.uniform(-0.2, 0.2)), float(rng.uniform(-45.0, 45.0))))
-    return out
+    config = WalkEnvConfig()
+    return [draw_command(rng, config) for _ in range(round(MIXED_S / MIXED_EVERY_S))]
 
 
 #: the knobs that act only when walking forward (scaled by the step's share of a full forward

@@ -20,6 +20,7 @@ from behaviors.walk import (
     walk_parameters,
 )
 from benchmarks.dribble import with_settings
+from learning.walk_search import SPEED_KEYS
 from world.nao_model import ROBOT_TYPES
 from world.robot_state import RobotState
 
@@ -186,7 +187,7 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
         "step_norm": own.step_norm,
         "step": replace(
             inside.step,
-            **{k: getattr(own.step, k) for k in (*SPEED_STEP_KEYS, "speed_heel_strike")},
+            **{k: getattr(own.step, k) for k in SPEED_STEP_KEYS},
         ),
     }
     assert replace(inside, **own_only) == own  # nothing else differs
@@ -199,16 +200,10 @@ def test_the_odometry_knows_the_drift_except_inside_another_skill(robot_type):
         assert inside.step_norm == 2.0 > own.step_norm
 
 
-#: the step keys of type 0's faster forward walk (sessions 22-23, learning/walk_search.py's
-#: SPEED_KEYS) that the kick's approach keeps at their old values
-SPEED_STEP_KEYS = (
-    "max_forward",
-    "speed_lean",
-    "swing_ramp",
-    "heel_strike_from",
-    "heel_pivot",
-    "speed_foot_forward",
-)
+#: the step keys of the faster forward walk (sessions 22-23, learning/walk_search.py's
+#: SPEED_KEYS; the heel strike is off in the kick's approach anyway) that the kick's approach
+#: keeps at their old values
+SPEED_STEP_KEYS = tuple(k.removeprefix("step.") for k in SPEED_KEYS if k.startswith("step."))
 
 
 def _steady_steps(params: StepParameters, command: StepCommand, steps: int = 6) -> list:
@@ -588,15 +583,10 @@ def test_walk_to_targets_stops_within_10_cm_without_falling(robot_type):
     assert sum(errors) / len(errors) < 0.05, errors
 
 
-def _leaning(roll_deg: float) -> SimpleNamespace:
-    """A context whose robot stands still in the air but for a roll (+ = to the right)."""
-    robot = SimpleNamespace(gyro_deg_s=(0.0, 0.0, 0.0), pitch_deg=0.0, roll_deg=roll_deg)
-    return SimpleNamespace(world=SimpleNamespace(robot=robot))
-
-
-def _pitched(pitch_deg: float) -> SimpleNamespace:
-    """A context whose robot stands still in the air but for a pitch (+ = forward)."""
-    robot = SimpleNamespace(gyro_deg_s=(0.0, 0.0, 0.0), pitch_deg=pitch_deg, roll_deg=0.0)
+def _tilted(pitch_deg: float = 0.0, roll_deg: float = 0.0) -> SimpleNamespace:
+    """A context whose robot stands still in the air but for a pitch (+ = forward) and a roll
+    (+ = to the right)."""
+    robot = SimpleNamespace(gyro_deg_s=(0.0, 0.0, 0.0), pitch_deg=pitch_deg, roll_deg=roll_deg)
     return SimpleNamespace(world=SimpleNamespace(robot=robot))
 
 
@@ -617,7 +607,7 @@ def test_the_gaits_own_forward_lean_is_no_forward_fall():
             engine.generator.next_targets(StepCommand(0.15))
         assert engine.generator.speed_share == pytest.approx(1.0)
         shifts[share] = [
-            engine._balanced(planned, _pitched(p)).forward - planned.forward
+            engine._balanced(planned, _tilted(pitch_deg=p)).forward - planned.forward
             for p in (lean_deg, lean_deg + 5.0)
         ]
     assert shifts[0.0] == pytest.approx([0.003 * lean_deg, 0.003 * (lean_deg + 5.0)])
@@ -645,13 +635,13 @@ def test_a_rolling_torso_opens_the_swing_foot_on_its_own_side_only(roll):
         if not left_swings_next:
             engine.generator.next_targets(turn)  # the left leg's step under way
         assert engine.generator.phase[1] != left_swings_next
-        moved.append(engine._balanced(turn, _leaning(roll)).left)
+        moved.append(engine._balanced(turn, _tilted(roll_deg=roll)).left)
     leaning_left = roll < 0.0
     opened, kept = moved if leaning_left else moved[::-1]
     assert opened == pytest.approx(-gain * roll)  # to the left (+) leaning left, else right
     assert kept == 0.0
     off = WalkEngine(2, walk_parameters(2))
-    assert off._balanced(turn, _leaning(roll)).left == 0.0
+    assert off._balanced(turn, _tilted(roll_deg=roll)).left == 0.0
     assert WalkSkill().engine_parameters(walk_parameters(2)).landing_roll_lean_gain > 0.0
     assert WalkSkill().engine_parameters(walk_parameters(3)).landing_roll_lean_gain == 0.0
     assert WalkVelocitySkill().engine_parameters(walk_parameters(2)).landing_roll_lean_gain == 0

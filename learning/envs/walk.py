@@ -125,6 +125,17 @@ class _Episode:
     poses: deque = field(default_factory=lambda: deque(maxlen=VELOCITY_WINDOW + 1))
 
 
+def draw_command(rng: np.random.Generator, config: WalkEnvConfig) -> tuple[float, float, float]:
+    """A random ``walk_velocity`` command (vx m/s, vy m/s, turn deg/s) in ``config``'s ranges:
+    the episodes' commands, and those of ``learning.walk_search``'s mixed runs."""
+    forward = float(rng.uniform(config.min_forward, config.max_forward))
+    if rng.uniform() < config.straight_share:
+        return (forward, 0.0, 0.0)
+    side = float(rng.uniform(-config.max_side, config.max_side))
+    turn = float(rng.uniform(-config.max_turn_deg, config.max_turn_deg))
+    return (forward, side, turn)
+
+
 class WalkResidualEnv(gym.Env):
     """See the module docstring. ``reset(options={"robot_type": t, "command": (vx, vy,
     turn)})`` fixes the type and holds one command for the whole episode (evaluation)."""
@@ -226,14 +237,7 @@ class WalkResidualEnv(gym.Env):
 
     # ------------------------------------------------------------------ pieces
     def _draw_command(self) -> tuple[float, float, float]:
-        config = self.config
-        rng = self.np_random
-        forward = float(rng.uniform(config.min_forward, config.max_forward))
-        if rng.uniform() < config.straight_share:
-            return (forward, 0.0, 0.0)
-        side = float(rng.uniform(-config.max_side, config.max_side))
-        turn = float(rng.uniform(-config.max_turn_deg, config.max_turn_deg))
-        return (forward, side, turn)
+        return draw_command(self.np_random, self.config)
 
     @staticmethod
     def _ground_pose(agent: LocalAgent) -> tuple[float, float, float]:
