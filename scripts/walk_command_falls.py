@@ -7,7 +7,9 @@ turning. Prints the falls and the seeds that fell. Why: the benchmark's walk fig
 command per run and walk to targets at 0.65 m/s at most; session 22's searched fast type-0 gait
 passed those and fell here (3 of 30, seeds 0-29, where the packaged walk falls none).
 
-Run: ``python scripts/walk_command_falls.py --type 0 --seeds 0 30`` (the packaged walk)
+Run: ``python scripts/walk_command_falls.py --type 0 --seeds 0 30`` (the packaged walk);
+``--set type4.step.max_forward=0.17`` (repeatable) walks with a ``walk.yaml`` setting changed (a
+temporary copy, as ``benchmarks/locomotion.py --set``).
 """
 
 from __future__ import annotations
@@ -18,16 +20,20 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from benchmarks.locomotion import walk_file_with
 from learning.envs.walk import WalkResidualEnv
 from learning.walk_eval import run_episode
 
 
-def command_falls(robot_type: int, seeds: range, seconds: float, every: float) -> list[int]:
+def command_falls(
+    robot_type: int, seeds: range, seconds: float, every: float, walk_file: Path | None = None
+) -> list[int]:
     """The seeds whose episode ended in a fall (``learning.walk_eval``'s episodes, no
-    policy: the residual is zero)."""
-    env = WalkResidualEnv(
-        {"robot_types": [robot_type], "episode_s": seconds, "command_every_s": every}
-    )
+    policy: the residual is zero), walking with ``walk_file`` (None: the packaged walk)."""
+    config = {"robot_types": [robot_type], "episode_s": seconds, "command_every_s": every}
+    if walk_file is not None:
+        config["walk_file"] = str(walk_file)
+    env = WalkResidualEnv(config)
     try:
         return [seed for seed in seeds if run_episode(env, None, seed, {})[1]]
     finally:
@@ -40,9 +46,17 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, nargs=2, default=[0, 30], metavar=("FIRST", "END"))
     parser.add_argument("--seconds", type=float, default=6.0, help="episode length")
     parser.add_argument("--every", type=float, default=1.5, help="seconds between commands")
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="DOTTED.KEY=VALUE",
+        help="walk with a walk.yaml setting changed (a temporary copy)",
+    )
     args = parser.parse_args()
     seeds = range(*args.seeds)
-    fell = command_falls(args.type, seeds, args.seconds, args.every)
+    with walk_file_with(args.set) as walk_file:
+        fell = command_falls(args.type, seeds, args.seconds, args.every, walk_file)
     print(f"command_falls[type{args.type}]: {len(fell)} of {len(seeds)}")
     print(f"fell_seeds[type{args.type}]: {' '.join(map(str, fell)) or '-'}")
 

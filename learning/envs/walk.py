@@ -30,6 +30,7 @@ import time
 from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import gymnasium as gym
@@ -84,6 +85,9 @@ class WalkEnvConfig:
     fall_penalty: float = 10.0
     action_penalty: float = 0.05
     seed: int = 0
+    #: walk settings to use instead of ``behaviors/data/walk.yaml`` (None: that file); a study
+    #: of other gait settings points this at its edited copy
+    walk_file: str | None = None
 
     def __post_init__(self) -> None:
         check_robot_types(self.robot_types, self.type_weights)
@@ -196,6 +200,8 @@ class WalkResidualEnv(gym.Env):
         skill = agent.behavior.skill("learned_walk")
         assert isinstance(skill, LearnedWalkSkill)
         skill.residual = self._held
+        if config.walk_file is not None:
+            skill.walk_file = Path(config.walk_file)
         fixed = options.get("command")
         self._fixed_command = None if fixed is None else tuple(float(v) for v in fixed)
         episode = _Episode(agent, skill, robot_type)
