@@ -132,6 +132,17 @@ SHUFFLE_SHIFT_S = 0.5
 SHUFFLE_LIFT_S = 0.12
 SHUFFLE_MOVE_S = 0.16
 SHUFFLE_LOWER_S = 0.12
+#: Balance while shuffling (off): the support legs' ankle roll moves by this gain (deg per deg)
+#: against the torso's roll, as the walk's ``ankle_roll_gain`` does; with
+#: ``SHUFFLE_SINGLE_SUPPORT_ONLY`` only while the other foot is in the air. Session 25 traced
+#: the shuffle's falls (3 % of basic trials) to the open-loop weight shift: on one foot the
+#: torso drifts 6-9 deg over the foot's edge, and now and then the shift to the other foot swings
+#: it past that foot's edge. 0.3 ended those falls (6 -> 0 in 200 trials, ``python
+#: scripts/kick/fall_stages.py``) but long kicks then went off line more often (more than 15 deg
+#: off in 10 of 53 kicks against 3 of 52; single support only: 14 of 103 against 6 of 103,
+#: and a shuffle fall remained), so it stays off. Outputs: ``runs/kick_shuffle/``.
+SHUFFLE_ANKLE_ROLL_GAIN = 0.0
+SHUFFLE_SINGLE_SUPPORT_ONLY = False
 #: Shuffles before the robot kicks anyway (within the coarse ``READY_*`` limits) or walks off
 #: and approaches again.
 MAX_SHUFFLES = 3
@@ -474,7 +485,7 @@ class BasicKickSkill(Skill):
         again."""
         assert self._shuffle is not None
         context.manager.execute_sub_behavior("pose", "stand")  # arms, head base, then legs
-        if self._shuffle.step(context.commands):
+        if self._shuffle.step(context.commands, context.world.robot.roll_deg):
             self._shuffle = None
             self.phase = "settle"
             self._settled = SETTLE_CYCLES - SHUFFLE_SETTLE_CYCLES
@@ -658,8 +669,10 @@ class FootShuffle:
     def duration(self) -> float:
         return sum(stage.seconds for stage in self._stages)
 
-    def step(self, commands: JointCommands) -> bool:
-        """Write this cycle's leg targets; True once the last stage has been reached."""
+    def step(self, commands: JointCommands, roll_deg: float = 0.0) -> bool:
+        """Write this cycle's leg targets; True once the last stage has been reached.
+        ``roll_deg`` (the torso's roll, + = leaning right) tilts the support ankles against it
+        by ``SHUFFLE_ANKLE_ROLL_GAIN`` (off by default); a lifted foot is no support."""
         self._elapsed += CYCLE_SECONDS
         stage, share, before = self._stage_at(self._elapsed)
         blend = 0.5 - 0.5 * math.cos(math.pi * share)
@@ -680,7 +693,11 @@ class FootShuffle:
             transform[0, 3] -= left  # native x = the robot's right
             transform[1, 3] += forward  # native y = forward
             transform[2, 3] += lifts[side]
-            commands.set_targets(self._ik.solve(side, transform).angles_deg)
+            angles = dict(self._ik.solve(side, transform).angles_deg)
+            other = "right" if side == "left" else "left"
+            if lifts[side] <= 0.0 and (lifts[other] > 0.0 or not SHUFFLE_SINGLE_SUPPORT_ONLY):
+                angles[f"{side[0]}lj6"] += SHUFFLE_ANKLE_ROLL_GAIN * roll_deg
+            commands.set_targets(angles)
         return self._elapsed >= self.duration
 
     def _stage_at(self, elapsed: float) -> tuple[_ShuffleStage, float, _ShuffleStage]:

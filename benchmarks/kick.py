@@ -135,7 +135,7 @@ def shuffle_in_place(driver: LocalAgent, forward: float, left: float) -> None:
         driver.perceive()
         driver.behavior.begin_cycle()
         driver.behavior.execute("pose", "stand")  # arms and head; the shuffle sets the legs
-        done = shuffle.step(driver.commands)
+        done = shuffle.step(driver.commands, driver.world.robot.roll_deg)
         driver.send(driver.behavior.effector_speeds())
     for _ in range(SHUFFLE_SETTLE_CYCLES):
         driver.run("pose", "stand")

@@ -19,10 +19,14 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+import behaviors.basic_kick as basic_kick_module
 from behaviors.basic_kick import (
     LONG,
     REACH_PREFERENCE_M,
+    SHUFFLE_LIFT_S,
+    SHUFFLE_SHIFT_S,
     BasicKickSkill,
+    FootShuffle,
     aimed_target,
     choose_foot,
     detour_point,
@@ -361,6 +365,34 @@ def test_a_shuffle_ends_moved_with_the_feet_squared_and_moves_a_foot_only_in_the
         # never both feet in the air
         assert not (stage.left_lift > 0 and stage.right_lift > 0)
         before = stage
+
+
+def _shuffle_targets(roll_deg: float, cycles: int) -> dict[str, float]:
+    """The leg targets a fresh shuffle (3 cm forward, 1 cm left) writes on its ``cycles``-th
+    cycle, every cycle seeing the torso rolled ``roll_deg``."""
+    shuffle = FootShuffle(0, 0.03, 0.01)
+    commands = JointCommands(0)
+    for _ in range(cycles):
+        commands.clear()
+        shuffle.step(commands, roll_deg)
+    return commands.targets()
+
+
+@pytest.mark.parametrize(("gain", "single_support_only"), [(0.0, False), (0.3, False), (0.3, True)])
+def test_the_shuffle_balance_tilts_only_the_support_ankles(monkeypatch, gain, single_support_only):
+    """The shuffle's (off by default) balance: a foot on the ground rolls its ankle against the
+    torso's roll by ``SHUFFLE_ANKLE_ROLL_GAIN`` (with ``SHUFFLE_SINGLE_SUPPORT_ONLY`` only while
+    the other foot is up); a lifted foot does not, and nothing else moves."""
+    monkeypatch.setattr(basic_kick_module, "SHUFFLE_ANKLE_ROLL_GAIN", gain)
+    monkeypatch.setattr(basic_kick_module, "SHUFFLE_SINGLE_SUPPORT_ONLY", single_support_only)
+    shift = round(0.5 * SHUFFLE_SHIFT_S / 0.02)  # both feet down, the weight moving
+    lifted = round((SHUFFLE_SHIFT_S + 0.5 * SHUFFLE_LIFT_S) / 0.02)  # the left foot rising
+    both = () if single_support_only else ("llj6", "rlj6")
+    for cycles, moved in ((shift, both), (lifted, ("rlj6",))):
+        upright, rolled = _shuffle_targets(0.0, cycles), _shuffle_targets(4.0, cycles)
+        for joint, target in upright.items():
+            expected = 4.0 * gain if joint in moved else 0.0
+            assert rolled[joint] - target == pytest.approx(expected, abs=1e-9), joint
 
 
 @pytest.mark.parametrize(

@@ -23,9 +23,11 @@ from __future__ import annotations
 
 import argparse
 import copy
+import importlib
 import math
 import statistics
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -51,14 +53,41 @@ class Variant:
     label: str
     motions: Mapping[str, KickMotion] | None
     asked: float | str
+    #: ``(module, NAME, value)``: constants of ``behaviors.<module>`` set while this variant plays
+    settings: tuple[tuple[str, str, float], ...] = ()
 
 
 def parse_variant(text: str) -> Variant:
-    """``label:FILE:D``: ``FILE`` a kick file or ``-`` (the packaged kicks); ``D`` metres,
-    ``long``, or ``sS`` for the aligned (not long) motion at strength ``S`` (calibration)."""
-    label, path, asked = text.split(":")
+    """``label:FILE:D[:SETTINGS]``: ``FILE`` a kick file or ``-`` (the packaged kicks); ``D``
+    metres, ``long``, or ``sS`` for the aligned (not long) motion at strength ``S``
+    (calibration); ``SETTINGS`` comma-separated ``module.NAME=value`` for constants of
+    ``behaviors.<module>`` (``kick.BALANCE_GAIN=4``), set only while the variant plays."""
+    label, path, asked, *rest = text.split(":")
     motions = None if path == "-" else load_kicks(Path(path))
-    return Variant(label, motions, asked if asked == "long" or asked[0] == "s" else float(asked))
+    settings = []
+    for item in rest[0].split(",") if rest else []:
+        target, value = item.split("=")
+        module, name = target.rsplit(".", 1)
+        getattr(importlib.import_module(f"behaviors.{module}"), name)  # unknown names fail here
+        settings.append((module, name, float(value)))
+    fixed_asked = asked if asked == "long" or asked[0] == "s" else float(asked)
+    return Variant(label, motions, fixed_asked, tuple(settings))
+
+
+@contextmanager
+def module_settings(settings: tuple[tuple[str, str, float], ...]) -> Iterator[None]:
+    """Set ``behaviors.<module>.NAME`` constants for the duration of the block, then restore."""
+    saved = []
+    for module_name, name, value in settings:
+        module = importlib.import_module(f"behaviors.{module_name}")
+        old = getattr(module, name)
+        saved.append((module, name, old))
+        setattr(module, name, type(old)(value))
+    try:
+        yield
+    finally:
+        for module, name, old in reversed(saved):
+            setattr(module, name, old)
 
 
 def play(
@@ -144,7 +173,8 @@ def main() -> None:
                 for v in variants:
                     session.restore_state(snapshot)
                     driver.world, driver.behavior = copy.deepcopy(saved)
-                    result = play(driver, v, target, direction, approach)
+                    with module_settings(v.settings):
+                        result = play(driver, v, target, direction, approach)
                     rows[v.label].append(result)
                     d, e, stage, kicked = result
                     print(

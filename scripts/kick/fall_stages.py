@@ -1,0 +1,87 @@
+"""Where basic kicks fall, and how far the torso rolls in each phase: one line per trial.
+
+Run: ``PYTHONPATH=. python scripts/kick/fall_stages.py --layout-seeds 0 1 --distance 3.5
+[--set basic_kick.SHUFFLE_ANKLE_ROLL_GAIN=0]``. Each trial is ``benchmarks/kick.py``'s basic
+trial (same layouts, same seeds); a fall before the kick is split by the phase it came in
+(``approach`` or ``shuffle``, which the benchmark counts together), and each trial prints the
+largest torso roll (true, degrees, in the torso's own frame) per skill phase. The last line
+sums the falls per stage and gives the shuffle's largest rolls (median, 90th percentile, max).
+
+Why: the benchmark's fall stages lump the approach, the alignment shuffle and the settle
+together as ``before_kick``; session 25 traced falls there to the open-loop shuffle tipping
+over a foot's edge, and this is how its roll feedback was measured.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+
+from benchmarks.kick import random_basic_layout, run_basic_trial
+from learning.local_agent import LocalAgent
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from sweep import apply
+
+
+def torso_roll_deg(driver: LocalAgent) -> float:
+    """The torso's roll (deg) in its own frame, from the simulator (ground truth)."""
+    rotation = driver.robot.torso_world_transform()[:3, :3]
+    up = rotation.T @ np.array([0.0, 0.0, 1.0])
+    return math.degrees(math.atan2(up[0], up[2]))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--layout-seeds", type=int, nargs="+", default=[0, 1])
+    parser.add_argument("--trials", type=int, default=20)
+    parser.add_argument("--distance", default="3.5")
+    parser.add_argument("--set", nargs="*", default=[], help="module.NAME=value (behaviors)")
+    args = parser.parse_args()
+    apply(args.set)
+    asked = args.distance if args.distance == "long" else float(args.distance)
+    stages: Counter[str] = Counter()
+    shuffle_rolls: list[float] = []
+    for seed in args.layout_seeds:
+        rng = np.random.default_rng(seed + 1)
+        layouts = [random_basic_layout(rng) for _ in range(args.trials)]
+        for trial, layout in enumerate(layouts):
+            rolls: dict[str, float] = {}
+
+            def observe(driver: LocalAgent, phase: str, rolls: dict[str, float] = rolls) -> None:
+                rolls[phase] = max(rolls.get(phase, 0.0), abs(torso_roll_deg(driver)))
+
+            result = run_basic_trial(asked, trial, *layout, observe=observe)
+            stage = result.fall_stage or "none"
+            if stage == "before_kick":
+                stage = "shuffle" if "shuffle" in rolls else "approach"
+            stages[stage] += 1
+            if "shuffle" in rolls:
+                shuffle_rolls.append(rolls["shuffle"])
+            phases = " ".join(f"{phase}:{roll:.1f}" for phase, roll in rolls.items())
+            print(
+                f"seed {seed} trial {trial:2d} foot {result.foot} fall {stage} "
+                f"distance {result.distance_m:.2f} direction {result.direction_error_deg:+.1f} "
+                f"| max roll {phases}",
+                flush=True,
+            )
+    falls = sum(count for stage, count in stages.items() if stage != "none")
+    largest = sorted(shuffle_rolls)
+    summary = "no shuffle"
+    if largest:
+        p90 = largest[max(0, math.ceil(0.9 * len(largest)) - 1)]
+        summary = (
+            f"shuffle max roll median {statistics.median(largest):.1f} p90 {p90:.1f} "
+            f"max {largest[-1]:.1f} deg"
+        )
+    print(f"trials {sum(stages.values())}, falls {falls} {dict(stages)}; {summary}")
+
+
+if __name__ == "__main__":
+    main()
