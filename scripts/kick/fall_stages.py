@@ -37,6 +37,11 @@ def torso_roll_deg(driver: LocalAgent) -> float:
     return math.degrees(math.atan2(up[0], up[2]))
 
 
+def _placement(error: tuple[float, float] | None) -> str:
+    """The ball's place against the kick's spot when it started (m, along and across), or -."""
+    return "-" if error is None else f"{error[0]:+.3f} {error[1]:+.3f}"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--layout-seeds", type=int, nargs="+", default=[0, 1])
@@ -68,7 +73,7 @@ def main() -> None:
             print(
                 f"seed {seed} trial {trial:2d} foot {result.foot} fall {stage} "
                 f"distance {result.distance_m:.2f} direction {result.direction_error_deg:+.1f} "
-                f"| max roll {phases}",
+                f"placement {_placement(result.placement_error_m)} | max roll {phases}",
                 flush=True,
             )
     falls = sum(count for stage, count in stages.items() if stage != "none")
