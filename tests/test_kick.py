@@ -37,7 +37,7 @@ from behaviors.basic_kick import (
     strength_for,
     wants_long,
 )
-from behaviors.joint_control import JointCommands
+from behaviors.joint_control import CYCLE_SECONDS, JointCommands
 from behaviors.kick import (
     ALIGNED_SUFFIX,
     FEET,
@@ -385,8 +385,8 @@ def test_the_shuffle_balance_tilts_only_the_support_ankles(monkeypatch, gain, si
     the other foot is up); a lifted foot does not, and nothing else moves."""
     monkeypatch.setattr(basic_kick_module, "SHUFFLE_ANKLE_ROLL_GAIN", gain)
     monkeypatch.setattr(basic_kick_module, "SHUFFLE_SINGLE_SUPPORT_ONLY", single_support_only)
-    shift = round(0.5 * SHUFFLE_SHIFT_S / 0.02)  # both feet down, the weight moving
-    lifted = round((SHUFFLE_SHIFT_S + 0.5 * SHUFFLE_LIFT_S) / 0.02)  # the left foot rising
+    shift = round(0.5 * SHUFFLE_SHIFT_S / CYCLE_SECONDS)  # both feet down, the weight moving
+    lifted = round((SHUFFLE_SHIFT_S + 0.5 * SHUFFLE_LIFT_S) / CYCLE_SECONDS)  # the left foot rising
     both = () if single_support_only else ("llj6", "rlj6")
     for cycles, moved in ((shift, both), (lifted, ("rlj6",))):
         upright, rolled = _shuffle_targets(0.0, cycles), _shuffle_targets(4.0, cycles)

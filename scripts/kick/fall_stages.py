@@ -4,7 +4,8 @@ Run: ``PYTHONPATH=. python scripts/kick/fall_stages.py --layout-seeds 0 1 --dist
 [--set basic_kick.SHUFFLE_ANKLE_ROLL_GAIN=0]``. Each trial is ``benchmarks/kick.py``'s basic
 trial (same layouts, same seeds); a fall before the kick is split by the phase it came in
 (``approach`` or ``shuffle``, which the benchmark counts together), and each trial prints the
-largest torso roll (true, degrees, in the torso's own frame) per skill phase. The last line
+largest torso roll (true, degrees, in the torso's own frame:
+:func:`learning.get_up_trace.torso_pitch_roll_deg`) per skill phase. The last line
 sums the falls per stage and gives the shuffle's largest rolls (median, 90th percentile, max).
 
 Why: the benchmark's fall stages lump the approach, the alignment shuffle and the settle
@@ -24,17 +25,11 @@ from pathlib import Path
 import numpy as np
 
 from benchmarks.kick import random_basic_layout, run_basic_trial
+from learning.get_up_trace import torso_pitch_roll_deg
 from learning.local_agent import LocalAgent
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from sweep import apply
-
-
-def torso_roll_deg(driver: LocalAgent) -> float:
-    """The torso's roll (deg) in its own frame, from the simulator (ground truth)."""
-    rotation = driver.robot.torso_world_transform()[:3, :3]
-    up = rotation.T @ np.array([0.0, 0.0, 1.0])
-    return math.degrees(math.atan2(up[0], up[2]))
 
 
 def _placement(error: tuple[float, float] | None) -> str:
@@ -60,7 +55,7 @@ def main() -> None:
             rolls: dict[str, float] = {}
 
             def observe(driver: LocalAgent, phase: str, rolls: dict[str, float] = rolls) -> None:
-                rolls[phase] = max(rolls.get(phase, 0.0), abs(torso_roll_deg(driver)))
+                rolls[phase] = max(rolls.get(phase, 0.0), abs(torso_pitch_roll_deg(driver)[1]))
 
             result = run_basic_trial(asked, trial, *layout, observe=observe)
             stage = result.fall_stage or "none"

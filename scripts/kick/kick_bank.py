@@ -23,13 +23,14 @@ from __future__ import annotations
 
 import argparse
 import copy
-import importlib
 import math
 import statistics
+import sys
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 
@@ -47,6 +48,9 @@ from benchmarks.kick import (
 from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from sweep import parse_change
+
 
 @dataclass(frozen=True)
 class Variant:
@@ -54,35 +58,28 @@ class Variant:
     motions: Mapping[str, KickMotion] | None
     asked: float | str
     #: ``(module, NAME, value)``: constants of ``behaviors.<module>`` set while this variant plays
-    settings: tuple[tuple[str, str, float], ...] = ()
+    settings: tuple[tuple[ModuleType, str, object], ...] = ()
 
 
 def parse_variant(text: str) -> Variant:
     """``label:FILE:D[:SETTINGS]``: ``FILE`` a kick file or ``-`` (the packaged kicks); ``D``
     metres, ``long``, or ``sS`` for the aligned (not long) motion at strength ``S``
     (calibration); ``SETTINGS`` comma-separated ``module.NAME=value`` for constants of
-    ``behaviors.<module>`` (``kick.BALANCE_GAIN=4``), set only while the variant plays."""
+    ``behaviors.<module>`` (``kick.BALANCE_GAIN=4``, as ``sweep.py --set``), set only while
+    the variant plays."""
     label, path, asked, *rest = text.split(":")
     motions = None if path == "-" else load_kicks(Path(path))
-    settings = []
-    for item in rest[0].split(",") if rest else []:
-        target, value = item.split("=")
-        module, name = target.rsplit(".", 1)
-        getattr(importlib.import_module(f"behaviors.{module}"), name)  # unknown names fail here
-        settings.append((module, name, float(value)))
+    settings = tuple(parse_change(item) for item in rest[0].split(",")) if rest else ()
     fixed_asked = asked if asked == "long" or asked[0] == "s" else float(asked)
-    return Variant(label, motions, fixed_asked, tuple(settings))
+    return Variant(label, motions, fixed_asked, settings)
 
 
 @contextmanager
-def module_settings(settings: tuple[tuple[str, str, float], ...]) -> Iterator[None]:
-    """Set ``behaviors.<module>.NAME`` constants for the duration of the block, then restore."""
-    saved = []
-    for module_name, name, value in settings:
-        module = importlib.import_module(f"behaviors.{module_name}")
-        old = getattr(module, name)
-        saved.append((module, name, old))
-        setattr(module, name, type(old)(value))
+def module_settings(settings: tuple[tuple[ModuleType, str, object], ...]) -> Iterator[None]:
+    """Set the variant's module constants for the duration of the block, then restore them."""
+    saved = [(module, name, getattr(module, name)) for module, name, _ in settings]
+    for module, name, value in settings:
+        setattr(module, name, value)
     try:
         yield
     finally:

@@ -10,25 +10,27 @@ from __future__ import annotations
 import argparse
 import importlib
 from pathlib import Path
+from types import ModuleType
 
 from behaviors.kick import load_kicks
 from benchmarks.kick import FALL_STAGES, SkillSettings, basic_kick_figures
 
 
+def parse_change(change: str) -> tuple[ModuleType, str, object]:
+    """``module.NAME=value`` (module under ``behaviors``) -> (module, NAME, value), the value of
+    the constant's own type: a bool from ``1``/``true``, else a float converted to it."""
+    target, value = change.split("=")
+    module_name, attribute = target.rsplit(".", 1)
+    module = importlib.import_module(f"behaviors.{module_name}")
+    old = getattr(module, attribute)  # unknown names fail here
+    typed = value.lower() in ("1", "true") if isinstance(old, bool) else type(old)(float(value))
+    return module, attribute, typed
+
+
 def apply(changes: list[str]) -> None:
-    """``module.NAME=value`` (module under ``behaviors``) -> setattr, value as float or int."""
+    """Set each ``module.NAME=value`` (:func:`parse_change`) for the rest of this process."""
     for change in changes:
-        target, value = change.split("=")
-        module_name, attribute = target.rsplit(".", 1)
-        module = importlib.import_module(f"behaviors.{module_name}")
-        old = getattr(module, attribute)  # unknown names fail here
-        setattr(
-            module,
-            attribute,
-            type(old)(float(value))
-            if not isinstance(old, bool)
-            else value.lower() in ("1", "true"),
-        )
+        setattr(*parse_change(change))
 
 
 def main() -> None:
