@@ -37,13 +37,19 @@ def _placement(error: tuple[float, float] | None) -> str:
     return "-" if error is None else f"{error[0]:+.3f} {error[1]:+.3f}"
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__)
+def trial_arguments(description: str | None) -> argparse.ArgumentParser:
+    """A parser with the options that pick basic trials as ``benchmarks/kick.py`` plays them
+    (layout seeds, trials per seed, distance asked) and ``--set`` for module constants."""
+    parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--layout-seeds", type=int, nargs="+", default=[0, 1])
     parser.add_argument("--trials", type=int, default=20)
     parser.add_argument("--distance", default="3.5")
     parser.add_argument("--set", nargs="*", default=[], help="module.NAME=value (behaviors)")
-    args = parser.parse_args()
+    return parser
+
+
+def main() -> None:
+    args = trial_arguments(__doc__).parse_args()
     apply(args.set)
     asked = args.distance if args.distance == "long" else float(args.distance)
     stages: Counter[str] = Counter()
