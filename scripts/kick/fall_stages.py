@@ -24,7 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-from benchmarks.kick import random_basic_layout, run_basic_trial
+from behaviors.kick import load_kicks
+from benchmarks.kick import SkillSettings, random_basic_layout, run_basic_trial
 from learning.get_up_trace import torso_pitch_roll_deg
 from learning.local_agent import LocalAgent
 
@@ -45,12 +46,14 @@ def trial_arguments(description: str | None) -> argparse.ArgumentParser:
     parser.add_argument("--trials", type=int, default=20)
     parser.add_argument("--distance", default="3.5")
     parser.add_argument("--set", nargs="*", default=[], help="module.NAME=value (behaviors)")
+    parser.add_argument("--kicks", type=Path, help="kick file instead of the packaged one")
     return parser
 
 
 def main() -> None:
     args = trial_arguments(__doc__).parse_args()
     apply(args.set)
+    settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
     asked = args.distance if args.distance == "long" else float(args.distance)
     stages: Counter[str] = Counter()
     shuffle_rolls: list[float] = []
@@ -63,7 +66,7 @@ def main() -> None:
             def observe(driver: LocalAgent, phase: str, rolls: dict[str, float] = rolls) -> None:
                 rolls[phase] = max(rolls.get(phase, 0.0), abs(torso_pitch_roll_deg(driver)[1]))
 
-            result = run_basic_trial(asked, trial, *layout, observe=observe)
+            result = run_basic_trial(asked, trial, *layout, observe=observe, settings=settings)
             stage = result.fall_stage or "none"
             if stage == "before_kick":
                 stage = "shuffle" if "shuffle" in rolls else "approach"

@@ -24,7 +24,14 @@ from pathlib import Path
 
 import numpy as np
 
-from benchmarks.kick import MOVING_SPEED, random_basic_layout, run_basic_trial
+from behaviors.kick import load_kicks
+from benchmarks.kick import (
+    DEFAULT_SETTINGS,
+    MOVING_SPEED,
+    SkillSettings,
+    random_basic_layout,
+    run_basic_trial,
+)
 from learning.local_agent import LocalAgent
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -36,7 +43,12 @@ from sweep import apply
 SUMMARY_TIMES = (0.3, 0.5, 0.65, 0.75, 0.85, 0.95, 1.06, 1.2, 1.36, 1.6, 1.9, 2.2, 2.6)
 
 
-def record_trial(asked: float | str, seed: int, layout: tuple[float, float, float]) -> dict:
+def record_trial(
+    asked: float | str,
+    seed: int,
+    layout: tuple[float, float, float],
+    settings: SkillSettings = DEFAULT_SETTINGS,
+) -> dict:
     """One basic trial with its per-cycle kick trace (see the module docstring)."""
     rows: list[tuple[float, ...]] = []
     foot: list[str] = []
@@ -69,7 +81,7 @@ def record_trial(asked: float | str, seed: int, layout: tuple[float, float, floa
             )
         )
 
-    result = run_basic_trial(asked, seed, *layout, observe=observe)
+    result = run_basic_trial(asked, seed, *layout, observe=observe, settings=settings)
     return {
         "trace": np.array(rows, dtype=float).reshape(-1, 7),
         "stage": result.fall_stage or "none",
@@ -126,13 +138,14 @@ def main() -> None:
         summary(args.summary)
         return
     apply(args.set)
+    settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
     asked = args.distance if args.distance == "long" else float(args.distance)
     trials: list[dict] = []
     for seed in args.layout_seeds:
         rng = np.random.default_rng(seed + 1)
         layouts = [random_basic_layout(rng) for _ in range(args.trials)]
         for index, layout in enumerate(layouts):
-            trial = record_trial(asked, index, layout)
+            trial = record_trial(asked, index, layout, settings)
             trial.update(layout_seed=seed, trial=index)
             trials.append(trial)
             print(
