@@ -38,6 +38,11 @@ def _placement(error: tuple[float, float] | None) -> str:
     return "-" if error is None else f"{error[0]:+.3f} {error[1]:+.3f}"
 
 
+def _seconds(time_s: float | None) -> str:
+    """Seconds from the skill's first cycle to the kick's contact, or - when it never kicked."""
+    return "-" if time_s is None else f"{time_s:.2f}"
+
+
 def trial_arguments(description: str | None) -> argparse.ArgumentParser:
     """A parser with the options that pick basic trials as ``benchmarks/kick.py`` plays them
     (layout seeds, trials per seed, distance asked) and ``--set`` for module constants."""
@@ -77,6 +82,7 @@ def main() -> None:
             print(
                 f"seed {seed} trial {trial:2d} foot {result.foot} fall {stage} "
                 f"distance {result.distance_m:.2f} direction {result.direction_error_deg:+.1f} "
+                f"time {_seconds(result.time_to_kick_s)} "
                 f"placement {_placement(result.placement_error_m)} | max roll {phases}",
                 flush=True,
             )
