@@ -1,9 +1,10 @@
 """Where basic kicks fall, and how far the torso rolls in each phase: one line per trial.
 
 Run: ``PYTHONPATH=. python scripts/kick/fall_stages.py --layout-seeds 0 1 --distance 3.5
-[--set basic_kick.SHUFFLE_ANKLE_ROLL_GAIN=0]``. Each trial is ``benchmarks/kick.py``'s basic
-trial (same layouts, same seeds); a fall before the kick is split by the phase it came in
-(``approach`` or ``shuffle``, which the benchmark counts together), and each trial prints the
+[--set basic_kick.SHUFFLE_ANKLE_ROLL_GAIN=0] [--kicks FILE]``. Each trial is
+``benchmarks/kick.py``'s basic trial (same layouts, same seeds); a fall before the kick is split
+by the phase it came in (``approach`` or ``shuffle``, which the benchmark counts together), each
+trial prints its distance, direction error and time to kick (s, - when it never kicked), the
 largest torso roll (true, degrees, in the torso's own frame:
 :func:`learning.get_up_trace.torso_pitch_roll_deg`) per skill phase. The last line
 sums the falls per stage and gives the shuffle's largest rolls (median, 90th percentile, max).

@@ -1,7 +1,7 @@
 """The torso's roll through each basic kick, with how the kick ended: data for fall predictors.
 
 Run: ``PYTHONPATH=. python scripts/kick/roll_outcomes.py --layout-seeds 0 1 --distance 3.5
---out runs/kick_abort/rolls_3.5_L0-1.npz [--set kick.NAME=value]``, then
+--out runs/kick_abort/rolls_3.5_L0-1.npz [--set kick.NAME=value] [--kicks FILE]``, then
 ``python scripts/kick/roll_outcomes.py --summary FILE...`` prints, per outcome (stayed up, fell
 before the ball moved, fell after), the roll at fixed times of the kick motion.
 
