@@ -388,6 +388,9 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
     "current": contextlib.nullcontext,
     "iters20": _constant(sim.physics, "SOLVER_ITERATIONS", 20),
     "iters15": _constant(sim.physics, "SOLVER_ITERATIONS", 15),
+    # converged enough to be left-right symmetric (benchmarks/symmetry.py)
+    "iters100": _constant(sim.physics, "SOLVER_ITERATIONS", 100),
+    "iters60": _constant(sim.physics, "SOLVER_ITERATIONS", 60),
     "substeps1": _constant(sim.session, "BASE_SUBSTEPS", 1),
     "dantzig": _engine_parameter(constraintSolverType=pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG),
     "strike": _strike(bounce=True),
