@@ -115,8 +115,9 @@ REACH_PREFERENCE_M = 1.0
 #: simulator right-footed long kicks fall about three times as often as left-footed ones
 #: (basic kicks asked 3.5 m on layout seeds 0-6: 14 of 58 against 7 of 82), most likely the
 #: physics solver's left-right bias (``benchmarks/symmetry.py``); preferring the left foot
-#: (every such kick then is left-footed) fell 27 -> 18 times in those 140 trials and 12 -> 8 in
-#: 60 on seeds 7-9, with the same median time to kick (12.5 s). Not for the short kicks: asked
+#: (every such kick then is left-footed) fell 27 -> 18 times in those 140 trials (median time
+#: to kick 12.5 s either way) and 12 -> 8 in 60 on seeds 7-9 (12.4 -> 12.7 s, and a wider
+#: direction error, median 5.2 -> 7.4 deg). Not for the short kicks: asked
 #: 2.0 m, all left-footed fell 35 times in 80 against 28. 0 turns it off (a real server, whose
 #: solver has no such bias).
 LONG_KICK_LEFT_CREDIT_M = 0.25

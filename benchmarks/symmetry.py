@@ -19,8 +19,9 @@ Prints, per solver iteration count (``sim.physics.SOLVER_ITERATIONS``, patched f
 Why: session 26 found right-footed basic kicks falling about three times as often as left ones
 (24 % against 9 % asked 3.5 m) and traced it here: Bullet's sequential-impulse solver works
 through the joints and contacts in a fixed order, and at 30 iterations it has not converged, so a
-robot standing in a mirror-symmetric pose leans 0.3 deg to one side whichever way it faces, and a
-kick and its mirror image part from the first cycles. ODE's quick-step solver (rcssserver3d's
+robot standing in a mirror-symmetric pose leans by up to 0.38 deg (by how much depends on the way
+it faces: -0.03 to 0.38 deg over the four headings), and a kick and its mirror image part from
+the first cycles. ODE's quick-step solver (rcssserver3d's
 engine) reorders its constraint rows at random during the iterations, which removes such a bias.
 """
 
@@ -28,6 +29,8 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -35,6 +38,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import sim.physics
+from behaviors.joint_control import CYCLE_SECONDS
 from learning.get_up_trace import torso_pitch_roll_deg
 from learning.local_agent import LocalAgent
 from sim.session import Session, SessionConfig
@@ -45,33 +49,34 @@ HOLD_CYCLES = 150
 SHIFT_S = 0.65
 
 
-def stand_lean(yaw_deg: float) -> tuple[float, float]:
-    """(torso roll deg, left less right hip pitch deg) after the rise and HOLD_CYCLES in stand."""
+@contextmanager
+def standing_robot(yaw_deg: float) -> Iterator[LocalAgent]:
+    """A robot of type 0, alone in a fresh world, risen into ``stand`` facing ``yaw_deg``."""
     session = Session(SessionConfig(seed=0, beam_noise=False))
     try:
         driver = LocalAgent.join(session, "Symmetry", 1, 0, beam=(-3.0, 0.0, yaw_deg))
-        driver.rise_to_stand()
+        yield driver.rise_to_stand()
+    finally:
+        session.close()
+
+
+def stand_lean(yaw_deg: float) -> tuple[float, float]:
+    """(torso roll deg, left less right hip pitch deg) after the rise and HOLD_CYCLES in stand."""
+    with standing_robot(yaw_deg) as driver:
         for _ in range(HOLD_CYCLES):
             driver.run("pose", "stand")
         joints = driver.world.robot.joints_deg
         return torso_pitch_roll_deg(driver)[1], joints["llj3"] - joints["rlj3"]
-    finally:
-        session.close()
 
 
 def kick_rolls(foot: str) -> np.ndarray:
     """The torso roll (deg) every cycle of the weight shift of a stand kick with ``foot``."""
-    session = Session(SessionConfig(seed=0, beam_noise=False))
-    try:
-        driver = LocalAgent.join(session, "Symmetry", 1, 0, beam=(-3.0, 0.0, 0.0))
-        driver.rise_to_stand()
+    with standing_robot(0.0) as driver:
         rolls = []
-        for _ in range(round(SHIFT_S / 0.02)):
+        for _ in range(round(SHIFT_S / CYCLE_SECONDS)):
             driver.run("kick", foot, 1.0)
             rolls.append(torso_pitch_roll_deg(driver)[1])
         return np.array(rolls)
-    finally:
-        session.close()
 
 
 def main() -> None:

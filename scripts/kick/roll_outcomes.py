@@ -6,7 +6,9 @@ Run: ``PYTHONPATH=. python scripts/kick/roll_outcomes.py --layout-seeds 0 1 --di
 before the ball moved, fell after), the roll at fixed times of the kick motion.
 
 Each trial is ``benchmarks/kick.py``'s basic trial (same layouts, same seeds). From the kick
-motion's first cycle to the end of the roll-out the script keeps, per cycle: the motion's elapsed
+motion's first cycle until the trial's skill loop ends the script keeps, per cycle (the
+benchmark's roll-out in ``stand`` after that is not traced; a fall there shows only as the
+``after_kick`` stage): the motion's elapsed
 time (s; NaN once the kick skill has finished), the torso roll seen from the kicking foot
 (degrees, + = leaning over the support foot: the world model's ``roll_deg``, as the skill sees
 it), its rate (deg/s, same sign), the two feet's FRP forces (support, kicking; N), whether the
