@@ -113,8 +113,9 @@ REACH_PREFERENCE_M = 1.0
 #: Metres of extra walking the left foot's long kick wins by, wherever both feet would play
 #: their long motions (asked beyond the short kicks' tables). Why (session 26): in this
 #: simulator right-footed long kicks fall about three times as often as left-footed ones
-#: (basic kicks asked 3.5 m on layout seeds 0-6: 14 of 58 against 7 of 82), most likely the
-#: physics solver's left-right bias (``benchmarks/symmetry.py``); preferring the left foot
+#: (basic kicks asked 3.5 m on layout seeds 0-6: 14 of 58 against 7 of 82), an effect of the
+#: unconverged physics solver (``benchmarks/symmetry.py``; under 60-100 iterations neither foot
+#: falls, ``runs/kick_abort/``); preferring the left foot
 #: (every such kick then is left-footed) fell 27 -> 18 times in those 140 trials (median time
 #: to kick 12.5 s either way) and 12 -> 8 in 60 on seeds 7-9 (12.4 -> 12.7 s, and a wider
 #: direction error, median 5.2 -> 7.4 deg). Not for the short kicks: asked
