@@ -110,18 +110,6 @@ LONG = "long"
 #: when only that foot's kick reaches the distance asked (for "long": reaches further). Why: on
 #: the bounce contacts (session 20) the left long kick goes about 6.5 m, the right about 4.3 m.
 REACH_PREFERENCE_M = 1.0
-#: Metres of extra walking the left foot's long kick wins by, wherever both feet would play
-#: their long motions (asked beyond the short kicks' tables). Why (session 26): in this
-#: simulator right-footed long kicks fall about three times as often as left-footed ones
-#: (basic kicks asked 3.5 m on layout seeds 0-6: 14 of 58 against 7 of 82), an effect of the
-#: unconverged physics solver (``benchmarks/symmetry.py``; under 60-100 iterations neither foot
-#: falls, ``runs/kick_abort/``); preferring the left foot
-#: (every such kick then is left-footed) fell 27 -> 18 times in those 140 trials (median time
-#: to kick 12.5 s either way) and 12 -> 8 in 60 on seeds 7-9 (12.4 -> 12.7 s, and a wider
-#: direction error, median 5.2 -> 7.4 deg). Not for the short kicks: asked
-#: 2.0 m, all left-footed fell 35 times in 80 against 28. 0 turns it off (a real server, whose
-#: solver has no such bias).
-LONG_KICK_LEFT_CREDIT_M = 0.25
 
 #: Fine alignment: the robot moves by small steps of its own (:class:`FootShuffle`) until the
 #: ball lies within these distances (m) of where the kick wants it. Why so tight: a stand kick
@@ -248,20 +236,21 @@ def choose_foot(
     walk_m: Mapping[str, float],
     reach_m: Mapping[str, float],
     distance: float | str,
-    credit_m: Mapping[str, float] | None = None,
 ) -> str:
     """The foot to kick with: the one whose spot is nearer (``walk_m``, metres to walk), unless
     only the other one's kick reaches ``distance`` (``reach_m``: the furthest each foot's kick
     goes; for "long", the further reach wins), which then wins within
-    :data:`REACH_PREFERENCE_M` of extra walking. ``credit_m``: metres of walking a foot is
-    let off (:data:`LONG_KICK_LEFT_CREDIT_M`)."""
+    :data:`REACH_PREFERENCE_M` of extra walking. (Session 26 let the left foot's long kick off
+    0.25 m of walking, against the right kicks' falls under 30 solver iterations; under 60 the
+    same 140 trials asked 3.5 m fell 1 time without it and none with it, but went shorter and
+    further off line with it: removed in session 27, runs/kick_abort/.)"""
     wanted = math.inf if distance == LONG else float(distance)
     best_reach = max(reach_m.values())
 
     def cost(foot: str) -> float:
         short_of = reach_m[foot] < min(wanted, best_reach)
         reach_cost = REACH_PREFERENCE_M if short_of else 0.0
-        return walk_m[foot] + reach_cost - (credit_m or {}).get(foot, 0.0)
+        return walk_m[foot] + reach_cost
 
     return min(FEET, key=cost)
 
@@ -515,14 +504,13 @@ class BasicKickSkill(Skill):
         ball = world.ball.position
         assert ball is not None
         robot_type = world.robot.robot_type
-        walk_m, reach_m, long = {}, {}, {}
+        walk_m, reach_m = {}, {}
         for foot in FEET:
-            motion, long[foot] = motion_for(robot_type, self.motions, foot, self._request)
+            motion, _ = motion_for(robot_type, self.motions, foot, self._request)
             ego = expected_ball_ego(robot_type, foot, motion, self._request)
             walk_m[foot] = world.distance_to(kick_spot(ball, target, ego)[:2])
             reach_m[foot] = motion.distance_range_m[1]
-        credit = {"left": LONG_KICK_LEFT_CREDIT_M} if all(long.values()) else None
-        return choose_foot(walk_m, reach_m, self._request, credit)
+        return choose_foot(walk_m, reach_m, self._request)
 
     def _stand_offset(self, context: SkillContext, motion: KickMotion) -> tuple[float, float]:
         """Where the ball should lie relative to the torso (ego x, y) when the robot stands

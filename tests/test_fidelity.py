@@ -50,7 +50,8 @@ def test_fall_ends_lying_like_the_real_robot() -> None:
 @pytest.mark.xfail(
     strict=True,
     reason="known gap: on the real server the fast leg swing topples the robot; ours stays up "
-    "since the solver runs 30 iterations (sim/physics.py). With 10 it fell, but then loaded "
+    "since the solver runs 60 iterations (sim/physics.py; 30 before session 27, where it "
+    "stayed up too). With 10 it fell, but then loaded "
     "joints sagged and held poses rocked, which made walking and getting up impossible.",
 )
 def test_swing_falls_too() -> None:

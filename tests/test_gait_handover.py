@@ -44,7 +44,9 @@ def test_a_dribble_started_mid_stride_continues_the_walks_step():
     walk_phase, first_phase, tilt = _walk_then(("dribble", "lfdl", 0.0, "left"))
     assert walk_phase[0] >= 0
     assert first_phase == _next_phase(walk_phase)
-    assert tilt < 20.0  # stays up (a fall is 60 deg)
+    # stays up: a fall is 60 deg; type 0's LFDL started from a stand leans up to 20.2 deg in
+    # its first 6 s (the hand-over 20.7 in 2 s; 19.2 under session 26's 30 solver iterations)
+    assert tilt < 25.0
 
 
 def test_a_walk_started_mid_stride_continues_the_other_walks_step():

@@ -22,7 +22,6 @@ import pytest
 import behaviors.basic_kick as basic_kick_module
 from behaviors.basic_kick import (
     LONG,
-    LONG_KICK_LEFT_CREDIT_M,
     REACH_PREFERENCE_M,
     SHUFFLE_LIFT_S,
     SHUFFLE_SHIFT_S,
@@ -200,18 +199,6 @@ def test_the_foot_whose_kick_reaches_wins_within_a_metre_of_walking():
     far_left = {"left": 0.5 + REACH_PREFERENCE_M + 0.1, "right": 0.5}
     assert choose_foot(far_left, reach, LONG) == "right"
     assert choose_foot({"left": 0.5, "right": 1.0}, {"left": 4.0, "right": 4.0}, LONG) == "left"
-
-
-def test_a_credited_foot_wins_within_its_credit_of_extra_walking():
-    """Session 26: where both feet would play their long kicks, the left foot is let off
-    ``LONG_KICK_LEFT_CREDIT_M`` of walking (its long kicks fall less in this simulator)."""
-    reach = {"left": 6.0, "right": 6.0}
-    credit = {"left": LONG_KICK_LEFT_CREDIT_M}
-    nearer_right = {"left": 0.5 + 0.5 * LONG_KICK_LEFT_CREDIT_M, "right": 0.5}
-    assert choose_foot(nearer_right, reach, 3.5) == "right"
-    assert choose_foot(nearer_right, reach, 3.5, credit) == "left"
-    much_nearer_right = {"left": 0.5 + 2.0 * LONG_KICK_LEFT_CREDIT_M, "right": 0.5}
-    assert choose_foot(much_nearer_right, reach, 3.5, credit) == "right"
 
 
 def test_the_long_left_kick_raises_the_support_arm_until_the_recover_frame():
