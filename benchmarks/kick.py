@@ -41,7 +41,7 @@ import math
 import statistics
 import sys
 from collections.abc import Callable, Collection, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -98,6 +98,12 @@ class SkillSettings:
     #: kick motions for both ``kick`` and ``basic_kick`` (``--kicks FILE``: a candidate of
     #: ``learning/kick_search.py --write``), so a candidate is checked after real approaches
     motions: Mapping[str, KickMotion] | None = None
+
+    @classmethod
+    def with_kicks(cls, kicks: Path | None) -> SkillSettings:
+        """Settings that play the kick motions of ``kicks`` (a ``kicks.yaml``-format file), or
+        the packaged ones when it is None: what the kick scripts' ``--kicks FILE`` means."""
+        return cls(motions=None if kicks is None else load_kicks(kicks))
 
     def apply(self, driver: LocalAgent) -> None:
         if self.head_up_cycles is not None:
@@ -595,10 +601,10 @@ def main() -> None:
         help="kick file to use instead of behaviors/data/kicks.yaml (candidates)",
     )
     args = parser.parse_args()
-    settings = SkillSettings(
+    settings = replace(
+        SkillSettings.with_kicks(args.kicks),
         head_up_cycles=args.head_up_cycles,
         cop_gain=args.cop_gain,
-        motions=None if args.kicks is None else load_kicks(args.kicks),
     )
     if args.impact:
         impacts(args.seeds, args.robot_type, args.strengths or [1.0], settings)

@@ -25,7 +25,6 @@ from pathlib import Path
 
 import numpy as np
 
-from behaviors.kick import load_kicks
 from benchmarks.kick import SkillSettings, random_basic_layout, run_basic_trial
 from learning.get_up_trace import torso_pitch_roll_deg
 from learning.local_agent import LocalAgent
@@ -59,7 +58,7 @@ def trial_arguments(description: str | None) -> argparse.ArgumentParser:
 def main() -> None:
     args = trial_arguments(__doc__).parse_args()
     apply(args.set)
-    settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
+    settings = SkillSettings.with_kicks(args.kicks)
     asked = args.distance if args.distance == "long" else float(args.distance)
     stages: Counter[str] = Counter()
     shuffle_rolls: list[float] = []

@@ -22,7 +22,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from sweep import apply
 
-from behaviors.kick import load_kicks
 from benchmarks.kick import SkillSettings, basic_kick_figures
 
 TRIAL = re.compile(r"^# trial (\d+): .*?foot='(\w+)'")
@@ -56,7 +55,7 @@ def main() -> None:
     parser.add_argument("--trials", type=int, default=20)
     args = parser.parse_args()
     apply(args.set)
-    settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
+    settings = SkillSettings.with_kicks(args.kicks)
     asked = args.distance if args.distance == "long" else float(args.distance)
     chosen = trials_by_seed(args.log, args.foot)
     medians, falls = [], 0

@@ -26,7 +26,6 @@ from pathlib import Path
 
 import numpy as np
 
-from behaviors.kick import load_kicks
 from benchmarks.kick import (
     DEFAULT_SETTINGS,
     MOVING_SPEED,
@@ -140,7 +139,7 @@ def main() -> None:
         summary(args.summary)
         return
     apply(args.set)
-    settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
+    settings = SkillSettings.with_kicks(args.kicks)
     asked = args.distance if args.distance == "long" else float(args.distance)
     trials: list[dict] = []
     for seed in args.layout_seeds:

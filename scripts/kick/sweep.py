@@ -12,7 +12,6 @@ import importlib
 from pathlib import Path
 from types import ModuleType
 
-from behaviors.kick import load_kicks
 from benchmarks.kick import FALL_STAGES, SkillSettings, basic_kick_figures
 
 
@@ -45,7 +44,7 @@ def main() -> None:
     )
     args = parser.parse_args()
     apply(args.set)
-    settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
+    settings = SkillSettings.with_kicks(args.kicks)
     asked = args.distance if args.distance == "long" else float(args.distance)
     falls = misses = 0
     for seed in args.layout_seeds:

@@ -12,7 +12,6 @@ from pathlib import Path
 import numpy as np
 import pybullet
 
-from behaviors.kick import load_kicks
 from benchmarks.kick import MOVING_SPEED, SkillSettings, random_basic_layout, run_basic_trial
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -62,7 +61,7 @@ def main() -> None:
                 )
             )
 
-        settings = SkillSettings(motions=None if args.kicks is None else load_kicks(args.kicks))
+        settings = SkillSettings.with_kicks(args.kicks)
         result = run_basic_trial(asked, k, *layouts[k], observe=observe, settings=settings)
         contact = next((i for i, r in enumerate(rows) if r[4]), None)
         fall = next((i for i, r in enumerate(rows) if r[3]), None)
