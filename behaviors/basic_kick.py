@@ -233,24 +233,19 @@ def motion_for(
 
 
 def choose_foot(
-    walk_m: Mapping[str, float],
-    reach_m: Mapping[str, float],
-    distance: float | str,
+    walk_m: Mapping[str, float], reach_m: Mapping[str, float], distance: float | str
 ) -> str:
     """The foot to kick with: the one whose spot is nearer (``walk_m``, metres to walk), unless
     only the other one's kick reaches ``distance`` (``reach_m``: the furthest each foot's kick
     goes; for "long", the further reach wins), which then wins within
-    :data:`REACH_PREFERENCE_M` of extra walking. (Session 26 let the left foot's long kick off
-    0.25 m of walking, against the right kicks' falls under 30 solver iterations; under 60 the
-    same 140 trials asked 3.5 m fell 1 time without it and none with it, but went shorter and
-    further off line with it: removed in session 27, runs/kick_abort/.)"""
+    :data:`REACH_PREFERENCE_M` of extra walking. (No preference for either foot beyond that:
+    session 26's head start for the left long kick went in session 27, docs/tuning-history.md.)"""
     wanted = math.inf if distance == LONG else float(distance)
     best_reach = max(reach_m.values())
 
     def cost(foot: str) -> float:
         short_of = reach_m[foot] < min(wanted, best_reach)
-        reach_cost = REACH_PREFERENCE_M if short_of else 0.0
-        return walk_m[foot] + reach_cost
+        return walk_m[foot] + (REACH_PREFERENCE_M if short_of else 0.0)
 
     return min(FEET, key=cost)
 

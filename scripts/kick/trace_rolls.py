@@ -31,6 +31,7 @@ def main() -> None:
     rng = np.random.default_rng(args.layout_seed + 1)
     layouts = [random_basic_layout(rng) for _ in range(max(args.trials) + 1)]
     asked = args.distance if args.distance == "long" else float(args.distance)
+    settings = SkillSettings.with_kicks(args.kicks)
     for k in args.trials:
         rows: list[tuple[float, float, float, float, bool]] = []
 
@@ -61,7 +62,6 @@ def main() -> None:
                 )
             )
 
-        settings = SkillSettings.with_kicks(args.kicks)
         result = run_basic_trial(asked, k, *layouts[k], observe=observe, settings=settings)
         contact = next((i for i, r in enumerate(rows) if r[4]), None)
         fall = next((i for i, r in enumerate(rows) if r[3]), None)
