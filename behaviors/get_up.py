@@ -18,8 +18,9 @@ The get-up sequences use predictive tracking (``track: predictive`` in
 ``behaviors/data/get_up.yaml``, see :mod:`behaviors.keyframes`): a whole-body motion that lags
 four cycles behind its keyframes, as the gain-0.25 controller does, loses the momentum it needs.
 
-A sequence named in :data:`RISE_BALANCE` (type 4's back get-up) closes the loop during its
-rise: the hip pitch joints aim further forward in proportion to the torso's backward lean.
+A sequence named in :data:`RISE_BALANCE` closes the loop during its rise: the hip pitch joints
+aim further forward in proportion to the torso's backward lean (type 4's back get-up) and, for
+type 0's front get-up, further back in proportion to a forward lean past 40 deg as well.
 
 An optional learned residual (``GetUpSkill.residual``, a :class:`ResidualSource` such as
 :class:`PolicyResidual` running a numpy policy from ``learning/train.py``) adds bounded
