@@ -630,17 +630,17 @@ def _front_fold(monkeypatch, robot_type: int, knee_deg: float) -> None:
 
 
 def test_a_late_retry_that_has_risen_counts_before_its_last_hold(monkeypatch):
-    """Fall type 3 seed 3136 (front; ``scripts/get_up/pin_search.py --case late_retry`` under
-    60 solver iterations (session 27): the front get-up fails twice, the back get-up from
-    1.58 s is the third attempt; seed 3041 from session 20's bounce contacts, 3504, retried
-    from the back at 1.6 s, before them): the legs are near the stand at 4.00 s, when the last
+    """Fall type 3 seed 3001 (front; ``scripts/get_up/pin_search.py --case late_retry`` after
+    session 28's hip correction of type 3's front get-up, which stands 3136 earlier; 3136
+    under session 27's 60 solver iterations, 3041 on session 20's bounce contacts, 3504
+    before them): the third attempt has the legs near the stand at 3.98 s, when the last
     frame's full time has not passed yet; reported once the legs are near the stand
     (EARLY_STAND_DEG) it counts, waiting for the hold it does not. Played without type 3's
     front retry version."""
     _package_without(monkeypatch, "get_up_front_retry_type3")
-    assert run_trial(3, "front", 3136).succeeded
+    assert run_trial(3, "front", 3001).succeeded
     monkeypatch.setattr(get_up_module, "EARLY_STAND_DEG", None)
-    assert not run_trial(3, "front", 3136).succeeded
+    assert not run_trial(3, "front", 3001).succeeded
 
 
 def test_type1_back_get_up_stands_without_self_collision(monkeypatch):
@@ -731,13 +731,15 @@ def test_a_front_retry_version_plays_after_any_failed_attempt():
 
 
 def test_type3_front_retry_with_the_hands_planted_brings_a_benchmark_fall_up(monkeypatch):
-    """Benchmark fall type 3 seed 3512 (``--seed 500``, ends on the front): the first attempt
-    sags onto the face from its knees; the retry with the arms kept at -40 rises from the
-    front again and stands within 4 s, the common first frame (arms overhead) vaults it over
-    the head onto the back and it stays down."""
-    assert run_trial(3, "front", 3512).succeeded
+    """Fall type 3 seed 3000 (ends on the front; ``scripts/get_up/pin_search.py --case
+    type3_front_retry`` after session 28's hip correction of type 3's front get-up, which
+    stands benchmark fall 3512 at its first attempt): the first attempt sags onto the face
+    from its knees; the retry with the arms kept at -40 rises from the front again and stands
+    within 4 s (3.74 s), the common first frame (arms overhead) vaults it over the head onto
+    the back and it stays down."""
+    assert run_trial(3, "front", 3000).succeeded
     _package_without(monkeypatch, "get_up_front_retry_type3")
-    assert not run_trial(3, "front", 3512).succeeded
+    assert not run_trial(3, "front", 3000).succeeded
 
 
 def test_type3_back_retry_stands_without_self_collision(monkeypatch):

@@ -80,6 +80,7 @@ CASES: dict[str, Case] = {
         _without("get_up_front_retry_type3"),
         _set("EARLY_STAND_DEG", None),
     ),
+    "type3_front_retry": Case(3, "front", "front", None, _without("get_up_front_retry_type3")),
     "type1_back_noself": Case(
         1, "back", "back", None, pins._type1_back_before_session11, physics="noself"
     ),
