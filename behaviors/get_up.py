@@ -19,8 +19,9 @@ The get-up sequences use predictive tracking (``track: predictive`` in
 four cycles behind its keyframes, as the gain-0.25 controller does, loses the momentum it needs.
 
 A sequence named in :data:`RISE_BALANCE` closes the loop during its rise: the hip pitch joints
-aim further forward in proportion to the torso's backward lean (type 4's back get-up) and, for
-type 0's front get-up, further back in proportion to a forward lean past 40 deg as well.
+aim further forward in proportion to the torso's backward lean (type 4's back get-up) and, in
+the front get-ups of types 0 and 3, further back in proportion to a forward lean past 40 / 45 deg
+(type 0's in both directions).
 
 An optional learned residual (``GetUpSkill.residual``, a :class:`ResidualSource` such as
 :class:`PolicyResidual` running a numpy policy from ``learning/train.py``) adds bounded

@@ -5,10 +5,10 @@ retried at once, without waiting for the body to settle when it lies flat), the 
 (abandoned for a back get-up as soon as the robot tips back over or lies on its back; types 1-4
 keep the arms down while the torso comes up) and the side roll (the lower arm levers the chest
 up) bring most robots back on their feet within 4 s (``benchmarks/get_up.py`` under 60
-solver iterations with session 28's type-0 front correction: 95 of 100, ``--seed 500`` 97,
-``--seed 1000`` 97, ``--seed 2000`` 94; ``runs/kick_abort/s28_get_up_seed*.txt``). Type 4's
-rise from the squat and type 0's front get-up have a hip-pitch balance correction from the
-IMU's torso pitch (``RISE_BALANCE``).
+solver iterations with session 28's front corrections of types 0 and 3: 95 of 100, ``--seed
+500`` 97, ``--seed 1000`` 97, ``--seed 2000`` 96; ``runs/kick_abort/s28_get_up_t3_seed*.txt``).
+Type 4's rise from the squat and the front get-ups of types 0 and 3 have a hip-pitch balance
+correction from the IMU's torso pitch (``RISE_BALANCE``).
 The trial test below asks for both sides, of types 0 and 3 (type 3's back fall of that seed
 stayed down under 30 solver iterations, a strict xfail until session 27).
 The tests that keep a tuned detail alive do it on one fall on which the detail makes the
