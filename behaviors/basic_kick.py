@@ -30,8 +30,9 @@ Phases:
 5. ``kick``: the ``kick`` skill with the strength that the kick's calibration table gives for
    the distance (full strength for a kick calibrated by its ball gap); beyond the table's
    reach, and for ``"long"``, the kick's long version where the file has one
-   (:func:`wants_long`; since session 20 the long kicks, searched on the bounce contacts, are
-   calibrated by their ball gap: the left one goes about 3-6.5 m, the right 3.5-4.3 m).
+   (:func:`wants_long`). Both are calibrated by strength (session 29): the short kick goes
+   about 2.1-3.2 m, the long one 3.7-6.3 m, on either foot (the right foot plays the left
+   motions mirrored).
 
 Once the kick has started it plays to its end. The head
 looks down while approaching: a ball at the toes lies about 65 deg below the horizon, outside a
@@ -108,7 +109,9 @@ CHOOSE_FOOT_DISTANCE_M = 0.6
 LONG = "long"
 #: Metres of walking a foot's kicking spot may lie further than the other's and still be chosen
 #: when only that foot's kick reaches the distance asked (for "long": reaches further). Why: on
-#: the bounce contacts (session 20) the left long kick goes about 6.5 m, the right about 4.3 m.
+#: the bounce contacts (session 20) the left long kick went about 6.5 m, the right one (a motion
+#: of its own until session 29) about 4.3 m. With both feet playing the same motion mirrored
+#: the reaches are equal and this never applies, but a kick file may again give a foot its own.
 REACH_PREFERENCE_M = 1.0
 
 #: Fine alignment: the robot moves by small steps of its own (:class:`FootShuffle`) until the

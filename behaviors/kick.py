@@ -21,7 +21,9 @@ outwards), which ``basic_kick`` aligns to, and may carry a calibration table ``d
 picks the strength for a distance. A kick may instead be calibrated by its ball gap
 (``gap_distances``, metres -> gap): it then always swings at full strength and ``basic_kick``
 lines the ball up further ahead of the toe for a shorter kick (session 12's candidate against
-the slow swings' falls; see the end of ``kicks.yaml``).
+the slow swings' falls; see the end of ``kicks.yaml``). The packaged kicks are calibrated by
+strength since session 29: the gap table sent kicks asked 3.5 m anywhere in 2.3-5.4 m, because
+the alignment leaves the ball within about a centimetre and a centimetre of gap was a metre.
 
 Sequences are looked up per robot type first (``kick_left_type3``), then by the common name, as
 the get-up does.
@@ -313,14 +315,14 @@ def kick_motion(
     ``aligned`` (``basic_kick``, after its walk and alignment shuffle) prefers the name with
     :data:`ALIGNED_SUFFIX` (``kick_right_aligned``) where the file has one.
 
-    Why a right kick of its own: the simulator is not mirror-symmetric in the last detail (the
-    solver visits the joints in order), and the mirrored left kick fell before contact in 5 of
-    12 right kicks after an approach, against 0 of 6 left ones (``benchmarks/kick.py``).
-    Why one for after the alignment: the same right kick leans 2-4 deg further over its
-    support foot after a shuffle than from a stand (torso roll 8-10 deg against 6) and falls
-    over it, while a smaller weight shift that suits it falls after contact from a stand.
-    After the alignment the left kick's support hip extends further (about 0.3 m more, no more
-    falls in basic kicks); on the right foot the same change fell more.
+    Why a file may give the right foot a kick of its own: the simulator is not mirror-symmetric
+    in the last detail (the solver visits the joints in order). Under 30 solver iterations the
+    mirrored left kick fell before contact in 5 of 12 right kicks after an approach, so until
+    session 28 the file had right motions of their own; under today's 60 the mirrored left
+    kicks fell less on the right foot than those (0 against 8 of 126 right-footed basic kicks)
+    and they went (``kicks.yaml``). Why one for after the alignment: a kick leans 2-4 deg
+    further over its support foot after a shuffle than from a stand, and after the alignment
+    the left kick's support hip extends further (about 0.3 m more, no more falls).
     ``long`` prefers the name with :data:`LONG_SUFFIX` (``kick_right_aligned_long``,
     ``kick_left_aligned_long``): the kicks with their support side's arm raised go further and
     fall less at full strength, but their weaker swings miss their distances by more or fall

@@ -635,7 +635,9 @@ def basic_kick_figures(
     """``basic_kick`` from a stand, the ball 0.5-2 m away at random bearings (layouts drawn
     from ``seed``; trial ``k`` runs session seed ``k``): medians over the trials that kicked of
     ``basic_kick_distance_m``, ``basic_kick_direction_error_deg`` (absolute) and
-    ``basic_kick_time_s`` (first ``basic_kick`` cycle to the ball moving), and the counts
+    ``basic_kick_time_s`` (first ``basic_kick`` cycle to the ball moving),
+    ``basic_kick_distance_error_m`` (median of ``|distance - asked|``; NaN for "long": a kick
+    whose median matches the request can still land a metre short or long), and the counts
     ``basic_kick_falls``, ``basic_kick_misses`` (trials that never kicked) and
     ``basic_kick_falls_<stage>`` per :data:`FALL_STAGES` entry. ``only``: run
     just these trial numbers (same layouts); ``verbose`` prints each trial with its trace;
@@ -659,8 +661,11 @@ def basic_kick_figures(
             print(f"# trial {k}: {results[-1]}", flush=True)
             print(f"#   {trace.summary()}", flush=True)
     kicked = [r for r in results if r.time_to_kick_s is not None]
+    asked_m = math.nan if isinstance(distance, str) else float(distance)
     return {
         "basic_kick_distance_m": _median([r.distance_m for r in kicked]),
+        # how far from the distance asked: the median alone hides a spread on either side
+        "basic_kick_distance_error_m": _median([abs(r.distance_m - asked_m) for r in kicked]),
         "basic_kick_direction_error_deg": _median([abs(r.direction_error_deg) for r in kicked]),
         "basic_kick_time_s": _median([r.time_to_kick_s for r in kicked]),  # type: ignore[misc]
         "basic_kick_falls": float(sum(r.fell for r in results)),

@@ -140,16 +140,16 @@ def test_the_right_foot_plays_its_own_kick_where_the_file_has_one():
 
 
 def test_basic_kick_plays_the_aligned_motion_where_the_file_has_one():
-    """After its alignment shuffle ``basic_kick`` asks for ``aligned`` motions: the packaged
-    right foot then kicks with a smaller weight shift than from a stand, the left one with its
-    support hip extending further in the swing, and a foot without an aligned motion falls back
-    to its plain one."""
+    """After its alignment shuffle ``basic_kick`` asks for ``aligned`` motions: the packaged left
+    one extends its support hip further in the swing than the stand kick; the right foot plays
+    it mirrored (the packaged file has no right motions since session 29), and a foot without an
+    aligned motion falls back to its plain one."""
     packaged = default_kicks()
     stand = packaged[KICK_LEFT]
     aligned_left = kick_motion(0, None, "left", aligned=True)
-    aligned_right = kick_motion(0, None, "right", aligned=True)
     assert aligned_left.name == KICK_LEFT + ALIGNED_SUFFIX
-    assert aligned_right.name == KICK_RIGHT + ALIGNED_SUFFIX
+    assert kick_motion(0, None, "right", aligned=True) is aligned_left
+    assert not any(name.startswith(KICK_RIGHT) for name in packaged)
     assert kick_motion(0, None, "right").name == KICK_LEFT  # stand kicks: the mirrored left
     assert kick_motion(0, None, "left") is stand
     swing_end = max(stand.swing_frames)
@@ -157,10 +157,9 @@ def test_basic_kick_plays_the_aligned_motion_where_the_file_has_one():
         aligned_left.frames.frames[swing_end].joints["rlj3"]
         < stand.frames.frames[swing_end].joints["rlj3"]
     )
-    assert aligned_right.frames.frames[0].joints["rlj2"] < stand.frames.frames[0].joints["rlj2"]
     # the same ball spot, so the foot choice and the alignment do not change
-    for foot, aligned in (("left", aligned_left), ("right", aligned_right)):
-        assert expected_ball_ego(0, foot, aligned) == expected_ball_ego(0, foot, stand)
+    for foot in FEET:
+        assert expected_ball_ego(0, foot, aligned_left) == expected_ball_ego(0, foot, stand)
     only_left = {KICK_LEFT: stand}
     assert kick_motion(0, only_left, "right", aligned=True) is stand
 
@@ -205,7 +204,8 @@ def test_the_long_left_kick_raises_the_support_arm_until_the_recover_frame():
     """Session 20: the left long kick lifts its support side's (right) arm 10 deg sideways from
     the weight shift and lowers it in the recover frame after the swing (replayed from 100 saved
     approaches, falls 22 -> 8); the right long kick keeps its arms (raised, it missed the ball
-    or fell before contact)."""
+    or fell before contact). Since session 29 the right foot plays the left motion mirrored,
+    so its support side's (left) arm rises the same way."""
     stand = get_pose("stand").joints
     long = kick_motion(0, None, "left", aligned=True, long=True)
     frames = long.sequence(1.0).frames
@@ -214,7 +214,7 @@ def test_the_long_left_kick_raises_the_support_arm_until_the_recover_frame():
     assert all("raj2" not in frames[i].joints for i in range(1, recover))  # held up
     assert frames[recover].joints["raj2"] == stand["raj2"]
     right = kick_motion(0, None, "right", aligned=True, long=True).sequence(1.0, mirror=True)
-    assert right.frames[0].joints.get("laj2", stand["laj2"]) == stand["laj2"]
+    assert right.frames[0].joints["laj2"] >= stand["laj2"] + 10.0  # left arm out: + on the left
 
 
 def test_a_kick_that_goes_left_is_aimed_right_of_the_target():
@@ -231,23 +231,22 @@ def test_a_kick_that_goes_left_is_aimed_right_of_the_target():
 
 
 def test_basic_kick_plays_the_long_motion_only_beyond_the_plain_table():
-    """Requests within the aligned right kick's table keep it (its weaker swings are the more
-    accurate); farther ones and "long" play the long version."""
-    plain = kick_motion(0, None, "right", aligned=True)
-    top = plain.distance_range_m[1]
-    assert not wants_long(plain, top)
-    assert not wants_long(plain, 2.0)
-    assert wants_long(plain, top + 0.1)
-    assert wants_long(plain, LONG)
-    long = kick_motion(0, None, "right", aligned=True, long=True)
-    assert long.distance_range_m[1] > top
-    assert strength_for(long, 3.0) == 1.0
-    # the left foot likewise: beyond its aligned table the long kick at full strength (weaker
-    # swings of it fell 5-6 of 15 left kicks at strength 0.5-0.75, none at 1)
-    left = kick_motion(0, None, "left", aligned=True)
-    assert wants_long(left, 3.0) and not wants_long(left, left.distance_range_m[1])
-    left_long = kick_motion(0, None, "left", aligned=True, long=True)
-    assert strength_for(left_long, 3.0) == strength_for(left_long, LONG) == 1.0
+    """Requests within the aligned kick's table keep it (its swings are the more accurate);
+    farther ones play the long version at the strength its own table gives (session 29: both
+    are calibrated by strength, the long table starting where the short one ends), "long" at
+    full strength."""
+    for foot in FEET:
+        plain = kick_motion(0, None, foot, aligned=True)
+        top = plain.distance_range_m[1]
+        assert not wants_long(plain, top)
+        assert not wants_long(plain, 2.0)
+        assert wants_long(plain, top + 0.1)
+        assert wants_long(plain, LONG)
+        long = kick_motion(0, None, foot, aligned=True, long=True)
+        low, high = long.distance_range_m
+        assert top <= low < high
+        assert strength_for(long, top + 0.1) == long.distances[0][0] < 1.0
+        assert strength_for(long, 0.5 * (low + high)) < strength_for(long, LONG) == 1.0
 
 
 def test_distance_table_gives_the_strength_by_linear_interpolation_clipped_at_its_ends():
@@ -269,19 +268,19 @@ def test_packaged_kick_is_calibrated_with_increasing_distances():
     assert len(motion.distances) >= 2
 
 
-def test_basic_kicks_pick_strengths_from_each_feet_own_table_after_the_approach():
-    """After the approach each foot has its own table (measured on basic kicks, not stand
-    kicks): on the bounce contacts (session 20) the right kick is spent near 2.36 m, the left
-    near 2.51 m, so the right foot needs more strength for the same distance; beyond its table a
-    request asks for the table's top strength (``basic_kick`` plays the long kick there)."""
-    left = kick_motion(0, None, "left", aligned=True)
-    right = kick_motion(0, None, "right", aligned=True)
+def test_both_feet_play_the_left_motions_with_one_table_after_the_approach():
+    """After the approach the kicks have tables of their own (measured on basic kicks, not stand
+    kicks). The right foot plays the left motions mirrored (session 29: under 60 solver
+    iterations its own motions fell 8 of 126 right-footed basic kicks, the mirrored left ones
+    none), so both feet ask the same strength for a distance; beyond the short table a request
+    asks for its top strength (``basic_kick`` plays the long kick there)."""
     stand = kick_motion(0)
-    assert left.distances != stand.distances and right.distances != stand.distances
-    assert left.distance_range_m[1] > right.distance_range_m[1]
-    assert right.strength_for(2.3) > left.strength_for(2.3)
-    assert left.strength_for(3.0) == left.distances[-1][0]
-    assert right.strength_for(3.0) == right.distances[-1][0]
+    for long in (False, True):
+        left = kick_motion(0, None, "left", aligned=True, long=long)
+        assert kick_motion(0, None, "right", aligned=True, long=long) is left
+        assert left.distances != stand.distances
+    left = kick_motion(0, None, "left", aligned=True)
+    assert left.strength_for(left.distance_range_m[1] + 1.0) == left.distances[-1][0]
 
 
 def test_a_distance_table_that_does_not_increase_is_refused():
@@ -462,12 +461,14 @@ def long_kicks() -> dict[str, KickMotion]:
 
 @pytest.mark.parametrize("foot", FEET)
 def test_full_long_kick_reaches_three_metres(foot, long_kicks):
-    """The long kicks play after ``basic_kick``'s alignment shuffle (they were searched on such
-    starts): after a shuffle of 2 cm forwards and 1 cm left at seed 1 they send the ball 6.87 m
-    (left) and 4.26 m (right) without falling, within 10 deg of their aim (``aim_deg``,
-    mirrored for the right foot). From the rise alone both fell after contact (the left one
-    since its support arm is raised). The plain stand kicks, tuned on the soft contacts'
-    pushing foot, go 2.03 / 2.62 m on the bounce contacts (2.98 / 3.09 m before session 20)."""
+    """The long kick plays after ``basic_kick``'s alignment shuffle (it was searched on such
+    starts): after a shuffle of 2 cm forwards and 1 cm left at seed 1 it sends the ball 5.64 m
+    with the left foot and 6.03 m with the right (the same motion mirrored, session 29; the right
+    foot's own long kick went 4.26 m under 30 solver iterations) without falling, within 10 deg
+    of its aim (``aim_deg``, mirrored for the right foot). From the rise alone both fell after
+    contact (the left one since its support arm is raised). The plain stand kicks, tuned on the
+    soft contacts' pushing foot, go 2.03 / 2.62 m on the bounce contacts (2.98 / 3.09 m before
+    session 20)."""
     result = run_trial(foot, 1.0, seed=1, motions=long_kicks, shuffle_m=(0.02, 0.01))
     assert result.time_to_contact_s is not None
     assert not result.fell
@@ -543,6 +544,7 @@ def test_basic_kick_figures_are_medians_over_the_kicks_and_counts_of_the_rest(mo
     figures = kick_benchmark.basic_kick_figures(4, 0, 3.0)
     assert figures == {
         "basic_kick_distance_m": 3.0,
+        "basic_kick_distance_error_m": 1.0,  # |2 - 3|, |3 - 3|, |4 - 3|: the median is not 0
         "basic_kick_direction_error_deg": 2.0,
         "basic_kick_time_s": 9.0,
         "basic_kick_falls": 1.0,

@@ -1,9 +1,11 @@
 """Per-foot figures of ``scripts/kick/fall_stages.py`` logs: trials, falls, kicks, medians.
 
-Run: ``python scripts/kick/trial_summary.py LOG [LOG ...]``. For each log, one line per foot and
-one for all trials: trials, falls, trials that kicked, the median distance (m), the median
-absolute direction error (deg), kicks more than 15 deg off line, and the median time to kick
-(s) over the trials that kicked.
+Run: ``python scripts/kick/trial_summary.py LOG [LOG ...] [--asked D]``. For each log, one line
+per foot and one for all trials: trials, falls, trials that kicked, the median distance (m),
+the tenth and ninetieth percentile distances, the median absolute direction error (deg), kicks
+more than 15 deg off line, and the median time to kick (s) over the trials that kicked; with
+``--asked`` (the distance the logs asked for, m) also the median ``|distance - D|`` and the
+share of kicks within 0.5 m of D.
 
 Why: calibrating a kick by its ball gap needs each foot's median distance (the feet play
 different motions), which the fall_stages summary line does not give.
@@ -57,27 +59,45 @@ def _median(values: list[float]) -> str:
     return f"{statistics.median(values):.2f}" if values else "-"
 
 
-def summary(label: str, trials: list[Trial]) -> str:
-    """One line of figures over ``trials``."""
+def _percentile(values: list[float], share: float) -> str:
+    """The nearest-rank percentile (``share`` in 0..1), or - for no values."""
+    if not values:
+        return "-"
+    ordered = sorted(values)
+    return f"{ordered[min(len(ordered) - 1, int(share * len(ordered)))]:.2f}"
+
+
+def summary(label: str, trials: list[Trial], asked_m: float | None = None) -> str:
+    """One line of figures over ``trials`` (``asked_m``: add the distance error figures)."""
     kicked = [t for t in trials if t.time_s is not None]
     errors = [abs(t.direction_deg) for t in kicked]
-    return (
+    distances = [t.distance_m for t in kicked]
+    line = (
         f"{label}: trials {len(trials)} falls {sum(t.fell for t in trials)} kicked {len(kicked)}"
-        f" distance_median_m {_median([t.distance_m for t in kicked])}"
+        f" distance_median_m {_median(distances)}"
+        f" p10-p90 {_percentile(distances, 0.1)}-{_percentile(distances, 0.9)}"
         f" direction_error_median_deg {_median(errors)}"
         f" wide_over_{WIDE_DEG:.0f}deg {sum(e > WIDE_DEG for e in errors)}"
         f" time_median_s {_median([t.time_s for t in kicked if t.time_s is not None])}"
     )
+    if asked_m is not None:
+        misses = [abs(d - asked_m) for d in distances]
+        within = sum(m <= 0.5 for m in misses) / len(misses) if misses else 0.0
+        line += f" distance_error_median_m {_median(misses)} within_0.5m {within:.2f}"
+    return line
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("logs", type=Path, nargs="+")
-    for path in parser.parse_args().logs:
+    parser.add_argument("--asked", type=float, help="the distance the logs asked for (m)")
+    args = parser.parse_args()
+    for path in args.logs:
         trials = read_trials(path)
         for foot in sorted({t.foot for t in trials}):
-            print(summary(f"{path.name} [{foot}]", [t for t in trials if t.foot == foot]))
-        print(summary(f"{path.name} [all]", trials))
+            mine = [t for t in trials if t.foot == foot]
+            print(summary(f"{path.name} [{foot}]", mine, args.asked))
+        print(summary(f"{path.name} [all]", trials, args.asked))
 
 
 if __name__ == "__main__":
