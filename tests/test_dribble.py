@@ -577,7 +577,7 @@ def test_benchmark_settings_override_changes_only_the_named_keys(tmp_path):
     from benchmarks.dribble import with_settings
 
     path = with_settings(
-        ["dfdl.controller.default.speed=0.7", "lfdl.walk.type2={step: {max_forward: 0.13}}"],
+        ["dfdl.controller.type0.speed=0.7", "lfdl.walk.type2={step: {max_forward: 0.13}}"],
         tmp_path,
     )
     assert dribble_gait("dfdl", 0, path).speed == pytest.approx(0.7)
