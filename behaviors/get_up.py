@@ -79,6 +79,13 @@ SETTLED_GYRO_DEG_S = 40.0
 #: ... for this many cycles in a row; after MAX_SETTLE_S the skill starts anyway.
 SETTLED_CYCLES = 3
 MAX_SETTLE_S = 1.0
+#: Between attempts (after one was abandoned) the robot counts as back on its feet only while
+#: its gyro reads less than this (deg/s; None: any). Why (session 29): a front get-up that tips
+#: back in its squat is abandoned at a 40 deg predicted lean, and the next cycle found it
+#: "standing" (tilt 12-16 deg, the weight on the feet) while it fell backwards at 200-300 deg/s;
+#: the skill then reported success and the robot lay on its back half a second later
+#: (learning/get_up_trace.py --type 0 --direction front --seed 33004 / 34008).
+STANDS_AFTER_ATTEMPT_MAX_GYRO_DEG_S: float | None = 100.0
 #: After a failed attempt a robot that already lies on its front or back (torso pitch past
 #: this many degrees either way) starts the next attempt at once: waiting for the gyro to
 #: quiet cost 0.2-0.35 s of the 4 s, and a retry then often ran out of time in the stand
@@ -491,7 +498,9 @@ class GetUpSkill(Skill):
         attempt = self._attempt
         if attempt.player is not None:
             return self._play(context, state)
-        if robot_stands(state) or (not state.is_fallen and self.attempts == 0):
+        if (robot_stands(state) and self._calm_between_attempts(state)) or (
+            not state.is_fallen and self.attempts == 0
+        ):
             self._hold_stand(context)
             return True
         if not self._settled(state):
@@ -501,6 +510,12 @@ class GetUpSkill(Skill):
         return self._play(context, state)
 
     # ------------------------------------------------------------------ phases
+    def _calm_between_attempts(self, state: RobotState) -> bool:
+        """Before any attempt always; after one, only with the body no longer swinging
+        (:data:`STANDS_AFTER_ATTEMPT_MAX_GYRO_DEG_S`)."""
+        limit = STANDS_AFTER_ATTEMPT_MAX_GYRO_DEG_S
+        return self.attempts == 0 or limit is None or float(abs(state.gyro_deg_s).max()) < limit
+
     def _settled(self, state: RobotState) -> bool:
         """Wait for the fall to end: a few quiet gyro readings, or MAX_SETTLE_S at most."""
         attempt = self._attempt

@@ -517,6 +517,22 @@ def test_type0_front_get_up_is_kept_up_by_its_hip_correction(monkeypatch):
     assert not run_trial(0, "front", 6004).succeeded
 
 
+def test_a_robot_tipping_back_after_an_abandoned_attempt_does_not_count_as_standing(
+    monkeypatch,
+):
+    """Benchmark fall type 0 seed 33004 (ends on the front; session 29): the front get-up
+    comes up over the knees and tips back in its squat; the attempt is abandoned at a 40 deg
+    predicted lean, when the torso is still within 20 deg of vertical with the weight on the
+    feet but falling back at 200-300 deg/s. Counted as standing there, the skill reported
+    success and the robot lay on its back half a second later; now it waits for the fall to
+    end and the back get-up stands it up within 4 s (3.78 s)."""
+    result = run_trial(0, "front", 33004)
+    assert result.succeeded and result.attempts == 2
+    monkeypatch.setattr(get_up_module, "STANDS_AFTER_ATTEMPT_MAX_GYRO_DEG_S", None)
+    result = run_trial(0, "front", 33004)
+    assert not result.succeeded and result.attempts == 1
+
+
 def test_front_get_up_of_types_1_to_4_keeps_the_arms_down(monkeypatch):
     """Fall type 3 seed 3007 (ends on the front; under 60 solver iterations (session 27) the
     first of type 3's seeds from 3000 on where the own variant stands at its first attempt
