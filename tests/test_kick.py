@@ -649,14 +649,17 @@ def test_basic_kick_moves_the_ball_three_metres(basic_kicks):
     assert float(np.median(kicked)) >= 2.5, basic_kicks
 
 
-def test_type3_kicks_shift_their_weight_further_and_are_otherwise_type_0s():
-    """Type 3 stands on wider feet: with type 0's weight shift (13.5 deg of hip roll) its basic
-    kicks fell 18 of 20 (session 29), with 16.5 deg none of 20. Only the shift differs."""
+@pytest.mark.parametrize(("robot_type", "shift"), [(1, -1), (3, 1)])
+def test_types_1_and_3_shift_their_weight_differently_and_are_otherwise_type_0s(robot_type, shift):
+    """With type 0's weight shift (13.5 deg of hip roll) type 3's basic kicks fell 18 of 20 and
+    type 1's 8 of 20 (session 29); type 3 (wider stance) shifts further (16.5 deg: none of 20),
+    type 1 (longer legs) less (12.0 deg: 1 of 20). Only the shift differs from type 0's."""
     for long in (False, True):
         common = kick_motion(0, None, "left", aligned=True, long=long)
-        type3 = kick_motion(3, None, "left", aligned=True, long=long)
-        assert type3.name == common.name + "_type3"
-        assert type3.frames.frames[0].joints["llj2"] >= common.frames.frames[0].joints["llj2"] + 2
-        assert type3.frames.frames[1:] == common.frames.frames[1:]
-        assert (type3.swing_frames, type3.distances) == (common.swing_frames, common.distances)
-        assert kick_motion(3, None, "right", aligned=True, long=long) is type3
+        own = kick_motion(robot_type, None, "left", aligned=True, long=long)
+        assert own.name == f"{common.name}_type{robot_type}"
+        difference = own.frames.frames[0].joints["llj2"] - common.frames.frames[0].joints["llj2"]
+        assert shift * difference >= 1.0
+        assert own.frames.frames[1:] == common.frames.frames[1:]
+        assert (own.swing_frames, own.distances) == (common.swing_frames, common.distances)
+        assert kick_motion(robot_type, None, "right", aligned=True, long=long) is own
