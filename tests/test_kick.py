@@ -663,3 +663,20 @@ def test_types_1_and_3_shift_their_weight_differently_and_are_otherwise_type_0s(
         assert own.frames.frames[1:] == common.frames.frames[1:]
         assert (own.swing_frames, own.distances) == (common.swing_frames, common.distances)
         assert kick_motion(robot_type, None, "right", aligned=True, long=long) is own
+
+
+@pytest.mark.parametrize(("foot", "seed"), [("left", 0), ("right", 1)])
+def test_type_4_kicks_with_its_toe_flat_and_the_ball_a_toe_further(foot, seed):
+    """Type 4's toes stand curled up (70 deg); curled, the toe met the ball and a full-strength
+    stand kick went 1.43 m (session 30). Its kicks lay the kicking toe flat through the swing
+    (the right foot's by the mirror table) and want the ball a toe's length further ahead:
+    2.56 / 2.58 m for these two kicks when written."""
+    for aligned, long in ((False, False), (True, False), (True, True)):
+        motion = kick_motion(4, None, foot, aligned=aligned, long=long)
+        common = kick_motion(0, None, foot, aligned=aligned, long=long)
+        assert motion.name == f"{common.name}_type4"
+        assert motion.ball_gap_m == pytest.approx(common.ball_gap_m + 0.0355)
+        assert motion.frames.frames[1].joints["llj7"] == 0.0
+    result = run_trial(foot, 1.0, seed=seed, robot_type=4)
+    assert not result.fell
+    assert result.distance_m > 2.2, result
