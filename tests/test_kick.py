@@ -680,3 +680,15 @@ def test_type_4_kicks_with_its_toe_flat_and_the_ball_a_toe_further(foot, seed):
     result = run_trial(foot, 1.0, seed=seed, robot_type=4)
     assert not result.fell
     assert result.distance_m > 2.2, result
+
+
+def test_type_4_walks_far_enough_in_not_to_back_off():
+    """Type 4's walk sets its soles further back than type 0's, so its torso settles further
+    back when it stands after the walk; with type 0's overshoot its first settle found the ball
+    6-7 cm too far ahead and it backed off to walk in again (8 of 20 layouts, this one among
+    them: session 30). Sent further beyond the spot, it only shuffles."""
+    phases: set[str] = set()
+    layout = basic_layouts(2, seed=0)[1]
+    result = run_basic_trial(2.0, 1, *layout, robot_type=4, observe=lambda _, p: phases.add(p))
+    assert result.time_to_kick_s is not None and not result.fell, result
+    assert "back_off" not in phases and "shuffle" in phases, phases

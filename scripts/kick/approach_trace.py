@@ -4,7 +4,7 @@ target (the kicking spot or the detour point), the distance and heading error to
 walk velocity command.
 
 Run: ``PYTHONPATH=. python scripts/kick/approach_trace.py --layout-seed 0 --trial 0
-[--distance 3] [--every 10]``. Why: the approach is the longest part of the time from the
+[--distance 3] [--every 10] [--robot-type 0]``. Why: the approach is the longest part of the time from the
 decision to kick to the ball leaving the foot (2-14 s for a ball 0.5-2 m away)."""
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ def main() -> None:
     parser.add_argument("--trial", type=int, default=0)
     parser.add_argument("--distance", default="3")
     parser.add_argument("--every", type=int, default=10)
+    parser.add_argument("--robot-type", type=int, default=0)
     args = parser.parse_args()
     rng = np.random.default_rng(args.layout_seed + 1)
     layouts = [random_basic_layout(rng) for _ in range(args.trial + 1)]
@@ -79,7 +80,7 @@ def main() -> None:
     target.append((bx + reach * math.cos(math.radians(direction)),
                    by + reach * math.sin(math.radians(direction))))  # fmt: skip
     print(f"ball {bx:+.2f} {by:+.2f} target dir {direction:+.0f} deg")
-    print(run_basic_trial(asked, args.trial, *layout, observe=observe))
+    print(run_basic_trial(asked, args.trial, *layout, robot_type=args.robot_type, observe=observe))
     first = near.get("near", math.nan)
     settle = phases.get("settle", math.nan)
     aligned = near.get("aligned", math.nan)
