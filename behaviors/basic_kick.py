@@ -133,6 +133,8 @@ SHUFFLE_REACH_M = 0.06
 #: How far (m) the torso moves sideways over the support foot before the other foot lifts
 #: (the stand's feet are about 0.11 m apart), and how high (m) the foot lifts.
 SHUFFLE_WEIGHT_SHIFT_M = 0.045
+#: ... for feet this far (m) from the middle (types 0-2, 4); see :func:`shuffle_weight_shift`.
+SHUFFLE_REFERENCE_HALF_SPACING_M = 0.055
 SHUFFLE_LIFT_M = 0.02
 #: Seconds per shuffle stage: weight shift, lift, move, lower (each foot), then back to the
 #: middle. 0.5 (was 0.4): the slower shift leaves the robot calmer for the kick. Session 5
@@ -615,14 +617,16 @@ class _ShuffleStage:
     right_lift: float = 0.0
 
 
-def shuffle_stages(forward: float, left: float) -> tuple[_ShuffleStage, ...]:
+def shuffle_stages(
+    forward: float, left: float, weight_shift: float = SHUFFLE_WEIGHT_SHIFT_M
+) -> tuple[_ShuffleStage, ...]:
     """The waypoints that move a robot standing in ``stand`` by (``forward``, ``left``) m: the
-    weight onto one foot, the other lifted, moved and put down, the weight onto it, the first
-    foot likewise, the torso back between the feet. The foot on the side of the move goes
-    first (a step out, then closing up), so the feet never cross."""
+    weight onto one foot (the torso ``weight_shift`` m sideways), the other lifted, moved and put
+    down, the weight onto it, the first foot likewise, the torso back between the feet. The foot
+    on the side of the move goes first (a step out, then closing up), so the feet never cross."""
     d = (forward, left)
     zero = (0.0, 0.0)
-    w = SHUFFLE_WEIGHT_SHIFT_M
+    w = weight_shift
     first = "left" if left >= 0.0 else "right"
 
     def over(foot: str, at: tuple[float, float]) -> tuple[float, float]:
@@ -674,7 +678,7 @@ class FootShuffle:
     def __init__(self, robot_type: int, forward: float, left: float) -> None:
         self._ik = leg_ik_for(robot_type)
         self._stand = _stand_feet(robot_type)
-        self._stages = shuffle_stages(forward, left)
+        self._stages = shuffle_stages(forward, left, shuffle_weight_shift(robot_type))
         self._elapsed = 0.0
         self._start = _ShuffleStage(0.0, (0.0, 0.0), (0.0, 0.0), (0.0, 0.0))
 
@@ -725,6 +729,18 @@ class FootShuffle:
 
 
 @cache
+def shuffle_weight_shift(robot_type: int) -> float:
+    """How far (m) a shuffle moves the torso sideways over its support foot: the share of half
+    the stand's foot spacing that ``SHUFFLE_WEIGHT_SHIFT_M`` is on types 0-2 and 4 (feet 0.11 m
+    apart). Why: type 3 stands on feet 0.146 m apart, and with the same 0.045 m its weight stayed
+    partly on the lifted foot, whose moves then gave way: its shuffles moved the robot by about
+    40 % of the distance asked (4.4 -> 3.9 -> 2.4 cm), it shuffled two or three times and ran
+    out of time in 5-8 of 40 basic kicks (session 30)."""
+    feet = _stand_feet(robot_type)
+    half_spacing = abs(float(feet["left"][0, 3] - feet["right"][0, 3])) / 2.0
+    return SHUFFLE_WEIGHT_SHIFT_M * half_spacing / SHUFFLE_REFERENCE_HALF_SPACING_M
+
+
 def _stand_feet(robot_type: int) -> dict[str, np.ndarray]:
     """Both foot bodies' transforms relative to the torso (native frame) in ``stand``."""
     transforms = body_transforms(robot_spec(robot_type), get_pose("stand").joints)

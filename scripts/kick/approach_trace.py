@@ -4,8 +4,8 @@ target (the kicking spot or the detour point), the distance and heading error to
 walk velocity command.
 
 Run: ``PYTHONPATH=. python scripts/kick/approach_trace.py --layout-seed 0 --trial 0
-[--distance 3] [--every 10] [--robot-type 0]``. Why: the approach is the longest part of the time from the
-decision to kick to the ball leaving the foot (2-14 s for a ball 0.5-2 m away)."""
+[--distance 3] [--every 10] [--robot-type 0]``. Why: the approach is the longest part of the
+time from the decision to kick to the ball leaving the foot (2-14 s for a ball 0.5-2 m away)."""
 
 from __future__ import annotations
 
