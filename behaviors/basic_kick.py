@@ -741,6 +741,7 @@ def shuffle_weight_shift(robot_type: int) -> float:
     return SHUFFLE_WEIGHT_SHIFT_M * half_spacing / SHUFFLE_REFERENCE_HALF_SPACING_M
 
 
+@cache
 def _stand_feet(robot_type: int) -> dict[str, np.ndarray]:
     """Both foot bodies' transforms relative to the torso (native frame) in ``stand``."""
     transforms = body_transforms(robot_spec(robot_type), get_pose("stand").joints)
