@@ -19,12 +19,13 @@ Phases:
 2. ``settle``: stand still (``walk_velocity`` 0, then the stand pose), then measure where the
    ball lies against where the kick expects it (``ball_gap_m``, ``ball_side_m`` of the kick,
    relative to the kicking foot in the stand pose) from the mean of the ball's torso-relative
-   sights of the last standing cycles: within ``FINE_*`` (about 1 cm), kick; within
-   ``SHUFFLE_REACH_M``, ``shuffle``; else ``back_off`` (walk to a spot behind) and approach
-   again.
-3. ``shuffle``: :class:`FootShuffle`, small IK-driven steps in place that move the robot by the
-   measured error and leave the feet squared in the stand pose; then settle again (at most
-   ``MAX_SHUFFLES`` times, after which a coarse ``READY_*`` alignment kicks anyway).
+   sights of the last standing cycles: within ``FINE_*`` (about 1 cm, facing the target within
+   6 deg), kick; within ``SHUFFLE_REACH_M`` and ``SHUFFLE_TURN_MAX_DEG``, ``shuffle``; else
+   ``back_off`` (walk to a spot behind) and approach again.
+3. ``shuffle``: :class:`FootShuffle`, small IK-driven steps in place that turn the robot by the
+   measured heading error and move it so that the ball lies on the spot in the turned frame
+   (:func:`shuffle_move`), leaving the feet squared in the stand pose; then settle again (at
+   most ``MAX_SHUFFLES`` times, after which a coarse ``READY_*`` alignment kicks anyway).
 4. ``head_up``: the head level in the stand for at least ``HEAD_UP_CYCLES``, then until the
    torso has stopped swaying (:class:`CalmWatch`, at most ``CALM_MAX_CYCLES`` in all).
 5. ``kick``: the ``kick`` skill with the strength that the kick's calibration table gives for
@@ -128,6 +129,8 @@ REACH_PREFERENCE_M = 1.0
 #: with 2 cm inwards fell (``/tmp`` study with benchmarks.kick.place_ball_in_front_of).
 FINE_ALONG_M = 0.012
 FINE_ACROSS_M = 0.01
+#: ... and facing the target within this (deg): the shuffles turn the robot too (session 30).
+FINE_HEADING_DEG = 6.0
 #: A shuffle moves the robot at most this far (m) along and across; larger errors walk again.
 SHUFFLE_REACH_M = 0.06
 #: How far (m) the torso moves sideways over the support foot before the other foot lifts
@@ -136,6 +139,16 @@ SHUFFLE_WEIGHT_SHIFT_M = 0.045
 #: ... for feet this far (m) from the middle (types 0-2, 4); see :func:`shuffle_weight_shift`.
 SHUFFLE_REFERENCE_HALF_SPACING_M = 0.055
 SHUFFLE_LIFT_M = 0.02
+#: A shuffle that also turns leads with the foot on the side of the turn unless its sideways
+#: move is longer than this (m): then the foot on the side of the move goes first, so that a
+#: foot never steps towards the other by more than this. Why the turn side: from a stand,
+#: asked 3 cm forward, 2 cm right and 10 deg left, the robot turned 2-5 deg (type 3: -2.7)
+#: leading with the right foot and 7-10 deg leading with the left (session 30, every type).
+SHUFFLE_SIDE_FIRST_M = 0.025
+#: A shuffle turns the robot by the heading error it measured, up to this (deg), and only when
+#: the error exceeds SHUFFLE_TURN_MIN_DEG (the pose's heading is noisier than that).
+SHUFFLE_TURN_MAX_DEG = 15.0
+SHUFFLE_TURN_MIN_DEG = 2.0
 #: Seconds per shuffle stage: weight shift, lift, move, lower (each foot), then back to the
 #: middle. 0.5 (was 0.4): the slower shift leaves the robot calmer for the kick. Session 5
 #: (benchmarks/kick.py --strengths --basic-trials 20 --basic-distance 3 [--layout-seed 1]):
@@ -187,29 +200,49 @@ class Alignment:
     across_m: float
     heading_deg: float
 
-    def within(self, along_m: float, across_m: float) -> bool:
+    def within(
+        self, along_m: float, across_m: float, heading_deg: float = READY_HEADING_DEG
+    ) -> bool:
         """The ball within ``along_m``/``across_m`` of where the kick wants it and the heading
-        within :data:`READY_HEADING_DEG` (every tolerance below shares the heading bound)."""
+        within ``heading_deg``."""
         return (
             abs(self.along_m) < along_m
             and abs(self.across_m) < across_m
-            and abs(self.heading_deg) < READY_HEADING_DEG
+            and abs(self.heading_deg) < heading_deg
         )
 
     @property
     def fine(self) -> bool:
         """Lined up well enough for the kick's full distance and direction."""
-        return self.within(FINE_ALONG_M, FINE_ACROSS_M)
+        return self.within(FINE_ALONG_M, FINE_ACROSS_M, FINE_HEADING_DEG)
 
     @property
     def within_shuffle(self) -> bool:
-        """Close enough for :class:`FootShuffle` steps to finish the alignment."""
-        return self.within(SHUFFLE_REACH_M, SHUFFLE_REACH_M)
+        """Close enough for :class:`FootShuffle` steps (which also turn) to finish the
+        alignment."""
+        return self.within(SHUFFLE_REACH_M, SHUFFLE_REACH_M, SHUFFLE_TURN_MAX_DEG)
 
     @property
     def ready(self) -> bool:
         """Close enough to kick."""
         return self.within(READY_ALONG_M, READY_ACROSS_M)
+
+
+def shuffle_move(alignment: Alignment, expected: tuple[float, float]) -> tuple[float, float, float]:
+    """The (forward m, left m, turn rad) a shuffle makes so that the ball, seen ``alignment``
+    off ``expected`` (where the kick wants it, ego x, y relative to the torso), lies there
+    afterwards, the robot facing the target: a turn by the heading error (beyond
+    :data:`SHUFFLE_TURN_MIN_DEG`, at most :data:`SHUFFLE_TURN_MAX_DEG`) about the torso, and
+    the move that then puts the ball at ``expected`` (each axis at most
+    :data:`SHUFFLE_REACH_M`; the next settle measures again)."""
+    heading = alignment.heading_deg if abs(alignment.heading_deg) > SHUFFLE_TURN_MIN_DEG else 0.0
+    turn = math.radians(max(-SHUFFLE_TURN_MAX_DEG, min(SHUFFLE_TURN_MAX_DEG, heading)))
+    ball_x, ball_y = expected[0] + alignment.along_m, expected[1] + alignment.across_m
+    c, s = math.cos(turn), math.sin(turn)
+    forward = ball_x - (c * expected[0] - s * expected[1])
+    left = ball_y - (s * expected[0] + c * expected[1])
+    reach = SHUFFLE_REACH_M
+    return max(-reach, min(reach, forward)), max(-reach, min(reach, left)), turn
 
 
 def wants_long(motion: KickMotion, distance: float | str) -> bool:
@@ -490,7 +523,9 @@ class BasicKickSkill(Skill):
             self.phase = "shuffle"
             self._shuffles += 1
             robot_type = context.world.robot.robot_type
-            self._shuffle = FootShuffle(robot_type, alignment.along_m, alignment.across_m)
+            assert self.foot is not None
+            expected = expected_ball_ego(robot_type, self.foot, motion, self._request)
+            self._shuffle = FootShuffle(robot_type, *shuffle_move(alignment, expected))
         else:
             self.phase = "back_off"
             self._shuffles = 0
@@ -607,7 +642,8 @@ class CalmWatch:
 @dataclass(frozen=True)
 class _ShuffleStage:
     """One waypoint of a shuffle: torso and feet displacements (ego x forward, y left; m) from
-    where they stood when it began, each foot's lift (m), and the seconds to get there."""
+    where they stood when it began, each foot's lift (m), the seconds to get there, and the
+    torso's and the feet's turn (rad, + = left) from where they faced."""
 
     seconds: float
     torso: tuple[float, float]
@@ -615,53 +651,77 @@ class _ShuffleStage:
     right: tuple[float, float]
     left_lift: float = 0.0
     right_lift: float = 0.0
+    torso_yaw: float = 0.0
+    left_yaw: float = 0.0
+    right_yaw: float = 0.0
 
 
 def shuffle_stages(
-    forward: float, left: float, weight_shift: float = SHUFFLE_WEIGHT_SHIFT_M
+    forward: float,
+    left: float,
+    weight_shift: float = SHUFFLE_WEIGHT_SHIFT_M,
+    turn: float = 0.0,
+    stand_feet: Mapping[str, tuple[float, float]] | None = None,
 ) -> tuple[_ShuffleStage, ...]:
-    """The waypoints that move a robot standing in ``stand`` by (``forward``, ``left``) m: the
-    weight onto one foot (the torso ``weight_shift`` m sideways), the other lifted, moved and put
-    down, the weight onto it, the first foot likewise, the torso back between the feet. The foot
-    on the side of the move goes first (a step out, then closing up), so the feet never cross."""
+    """The waypoints that move a robot standing in ``stand`` by (``forward``, ``left``) m and
+    turn it by ``turn`` rad about its torso: the weight onto one foot (the torso
+    ``weight_shift`` m sideways), the other lifted, moved and put down turned, the weight onto
+    it, the first foot likewise, the torso back between the feet. The foot on the side of the
+    move goes first (a step out, then closing up), so the feet never cross; with no sideways
+    move, the foot on the side of the turn. ``stand_feet`` (ego x, y of each foot in ``stand``,
+    relative to the torso) is needed for a turn: each foot goes to where the turned stand puts
+    it."""
     d = (forward, left)
     zero = (0.0, 0.0)
     w = weight_shift
-    first = "left" if left >= 0.0 else "right"
+    offsets = {"left": d, "right": d}
+    if turn:
+        if stand_feet is None:
+            raise ValueError("a turning shuffle needs the stand's foot places")
+        c, s = math.cos(turn), math.sin(turn)
+        for side, (x, y) in stand_feet.items():
+            offsets[side] = (forward + c * x - s * y - x, left + s * x + c * y - y)
+    sideways = left if abs(left) > SHUFFLE_SIDE_FIRST_M or not turn else turn
+    first = "left" if sideways >= 0.0 else "right"
+    second = "right" if first == "left" else "left"
 
     def over(foot: str, at: tuple[float, float]) -> tuple[float, float]:
         side = w if foot == "left" else -w
         return (at[0], at[1] + side)
 
-    def feet(left_at, right_at, lift_l=0.0, lift_r=0.0, seconds=0.0, torso=zero):
-        return _ShuffleStage(seconds, torso, left_at, right_at, lift_l, lift_r)
+    def stage(
+        at: Mapping[str, tuple[float, float]],
+        yaw: Mapping[str, float],
+        lifted: str | None,
+        seconds: float,
+        torso: tuple[float, float],
+        torso_yaw: float,
+    ) -> _ShuffleStage:
+        lift_l = SHUFFLE_LIFT_M if lifted == "left" else 0.0
+        lift_r = SHUFFLE_LIFT_M if lifted == "right" else 0.0
+        return _ShuffleStage(
+            seconds, torso, at["left"], at["right"], lift_l, lift_r, torso_yaw, yaw["left"],
+            yaw["right"],
+        )  # fmt: skip
 
-    if first == "left":
-        t1 = over("right", zero)
-        t2 = over("left", d)
-        return (
-            feet(zero, zero, seconds=SHUFFLE_SHIFT_S, torso=t1),
-            feet(zero, zero, SHUFFLE_LIFT_M, 0.0, SHUFFLE_LIFT_S, t1),
-            feet(d, zero, SHUFFLE_LIFT_M, 0.0, SHUFFLE_MOVE_S, t1),
-            feet(d, zero, 0.0, 0.0, SHUFFLE_LOWER_S, t1),
-            feet(d, zero, seconds=2 * SHUFFLE_SHIFT_S, torso=t2),
-            feet(d, zero, 0.0, SHUFFLE_LIFT_M, SHUFFLE_LIFT_S, t2),
-            feet(d, d, 0.0, SHUFFLE_LIFT_M, SHUFFLE_MOVE_S, t2),
-            feet(d, d, 0.0, 0.0, SHUFFLE_LOWER_S, t2),
-            feet(d, d, seconds=SHUFFLE_SHIFT_S, torso=d),
-        )
-    t1 = over("left", zero)
-    t2 = over("right", d)
+    start = {"left": zero, "right": zero}
+    unturned = {"left": 0.0, "right": 0.0}
+    one = {**start, first: offsets[first]}
+    one_yaw = {**unturned, first: turn}
+    both = {**one, second: offsets[second]}
+    both_yaw = {"left": turn, "right": turn}
+    t1, t2 = over(second, zero), over(first, offsets[first])
+    half = turn / 2.0
     return (
-        feet(zero, zero, seconds=SHUFFLE_SHIFT_S, torso=t1),
-        feet(zero, zero, 0.0, SHUFFLE_LIFT_M, SHUFFLE_LIFT_S, t1),
-        feet(zero, d, 0.0, SHUFFLE_LIFT_M, SHUFFLE_MOVE_S, t1),
-        feet(zero, d, 0.0, 0.0, SHUFFLE_LOWER_S, t1),
-        feet(zero, d, seconds=2 * SHUFFLE_SHIFT_S, torso=t2),
-        feet(zero, d, SHUFFLE_LIFT_M, 0.0, SHUFFLE_LIFT_S, t2),
-        feet(d, d, SHUFFLE_LIFT_M, 0.0, SHUFFLE_MOVE_S, t2),
-        feet(d, d, 0.0, 0.0, SHUFFLE_LOWER_S, t2),
-        feet(d, d, seconds=SHUFFLE_SHIFT_S, torso=d),
+        stage(start, unturned, None, SHUFFLE_SHIFT_S, t1, 0.0),
+        stage(start, unturned, first, SHUFFLE_LIFT_S, t1, 0.0),
+        stage(one, one_yaw, first, SHUFFLE_MOVE_S, t1, 0.0),
+        stage(one, one_yaw, None, SHUFFLE_LOWER_S, t1, 0.0),
+        stage(one, one_yaw, None, 2 * SHUFFLE_SHIFT_S, t2, half),
+        stage(one, one_yaw, second, SHUFFLE_LIFT_S, t2, half),
+        stage(both, both_yaw, second, SHUFFLE_MOVE_S, t2, half),
+        stage(both, both_yaw, None, SHUFFLE_LOWER_S, t2, half),
+        stage(both, both_yaw, None, SHUFFLE_SHIFT_S, d, turn),
     )
 
 
@@ -675,10 +735,15 @@ class FootShuffle:
     their angle targets; one foot moves only while the weight rests on the other.
     """
 
-    def __init__(self, robot_type: int, forward: float, left: float) -> None:
+    def __init__(self, robot_type: int, forward: float, left: float, turn: float = 0.0) -> None:
+        """Move by (``forward``, ``left``) m and turn by ``turn`` rad (+ = left) about the
+        torso."""
         self._ik = leg_ik_for(robot_type)
         self._stand = _stand_feet(robot_type)
-        self._stages = shuffle_stages(forward, left, shuffle_weight_shift(robot_type))
+        feet_ego = {side: (float(t[1, 3]), float(-t[0, 3])) for side, t in self._stand.items()}
+        self._stand_ego = feet_ego
+        weight_shift = shuffle_weight_shift(robot_type)
+        self._stages = shuffle_stages(forward, left, weight_shift, turn, feet_ego)
         self._elapsed = 0.0
         self._start = _ShuffleStage(0.0, (0.0, 0.0), (0.0, 0.0), (0.0, 0.0))
 
@@ -697,18 +762,22 @@ class FootShuffle:
         def mix(a: tuple[float, float], b: tuple[float, float]) -> tuple[float, float]:
             return (a[0] + (b[0] - a[0]) * blend, a[1] + (b[1] - a[1]) * blend)
 
+        def between(a: float, b: float) -> float:
+            return a + (b - a) * blend
+
         torso = mix(before.torso, stage.torso)
+        torso_yaw = between(before.torso_yaw, stage.torso_yaw)
         lifts = {
-            "left": before.left_lift + (stage.left_lift - before.left_lift) * blend,
-            "right": before.right_lift + (stage.right_lift - before.right_lift) * blend,
+            "left": between(before.left_lift, stage.left_lift),
+            "right": between(before.right_lift, stage.right_lift),
+        }
+        yaws = {
+            "left": between(before.left_yaw, stage.left_yaw),
+            "right": between(before.right_yaw, stage.right_yaw),
         }
         feet = {"left": mix(before.left, stage.left), "right": mix(before.right, stage.right)}
         for side in FEET:
-            transform = self._stand[side].copy()
-            forward = feet[side][0] - torso[0]
-            left = feet[side][1] - torso[1]
-            transform[0, 3] -= left  # native x = the robot's right
-            transform[1, 3] += forward  # native y = forward
+            transform = self._foot_transform(side, feet[side], yaws[side], torso, torso_yaw)
             transform[2, 3] += lifts[side]
             angles = dict(self._ik.solve(side, transform).angles_deg)
             other = "right" if side == "left" else "left"
@@ -716,6 +785,31 @@ class FootShuffle:
                 angles[f"{side[0]}lj6"] += SHUFFLE_ANKLE_ROLL_GAIN * roll_deg
             commands.set_targets(angles)
         return self._elapsed >= self.duration
+
+    def _foot_transform(
+        self,
+        side: str,
+        moved: tuple[float, float],
+        yaw: float,
+        torso: tuple[float, float],
+        torso_yaw: float,
+    ) -> np.ndarray:
+        """The foot's transform relative to the torso (native frame, as the leg IK takes it)
+        with the foot moved by ``moved`` and turned by ``yaw`` from its stand place, the torso
+        by ``torso`` and ``torso_yaw`` (start frame, ego axes)."""
+        stand_x, stand_y = self._stand_ego[side]
+        x, y = stand_x + moved[0] - torso[0], stand_y + moved[1] - torso[1]
+        c, s = math.cos(torso_yaw), math.sin(torso_yaw)
+        ego_x, ego_y = c * x + s * y, -s * x + c * y
+        transform = self._stand[side].copy()
+        transform[0, 3] = -ego_y  # native x = the robot's right
+        transform[1, 3] = ego_x  # native y = forward
+        turn = yaw - torso_yaw
+        if turn:
+            c, s = math.cos(turn), math.sin(turn)
+            yaw_rotation = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+            transform[:3, :3] = yaw_rotation @ transform[:3, :3]
+        return transform
 
     def _stage_at(self, elapsed: float) -> tuple[_ShuffleStage, float, _ShuffleStage]:
         """The stage being played, the share of it done (0..1) and the stage before it."""

@@ -129,13 +129,14 @@ def stand_up(
     return driver.rise_to_stand()
 
 
-def shuffle_in_place(driver: LocalAgent, forward: float, left: float) -> None:
+def shuffle_in_place(driver: LocalAgent, forward: float, left: float, turn: float = 0.0) -> None:
     """Play ``basic_kick``'s fine-alignment steps (:class:`~behaviors.basic_kick.FootShuffle`)
-    by (``forward``, ``left``) m and stand :data:`~behaviors.basic_kick.SHUFFLE_SETTLE_CYCLES`
-    cycles, as ``basic_kick`` does before nearly every kick. Why: stand kicks from the rise
+    by (``forward``, ``left``) m and ``turn`` rad and stand
+    :data:`~behaviors.basic_kick.SHUFFLE_SETTLE_CYCLES` cycles, as ``basic_kick`` does before
+    nearly every kick. Why: stand kicks from the rise
     alone did not predict kicks after the approach (a kick with no falls in 12 stand kicks fell
     12 of 20 basic kicks), so trials can start from the shuffle's stance instead."""
-    shuffle = FootShuffle(driver.robot_type, forward, left)
+    shuffle = FootShuffle(driver.robot_type, forward, left, turn)
     done = False
     while not done:
         driver.perceive()

@@ -368,6 +368,56 @@ def test_a_shuffle_ends_moved_with_the_feet_squared_and_moves_a_foot_only_in_the
         before = stage
 
 
+@pytest.mark.parametrize(("forward", "left", "turn_deg"), [(0.03, -0.02, 10.0), (0.0, 0.0, -8.0)])
+def test_a_turning_shuffle_ends_with_both_feet_where_the_turned_stand_puts_them(
+    forward, left, turn_deg
+):
+    stand = {"left": (0.04, 0.055), "right": (0.04, -0.055)}
+    turn = math.radians(turn_deg)
+    stages = shuffle_stages(forward, left, 0.045, turn, stand)
+    last = stages[-1]
+    assert last.torso == (forward, left)
+    assert last.torso_yaw == last.left_yaw == last.right_yaw == turn
+    c, s = math.cos(turn), math.sin(turn)
+    for side, (x, y) in stand.items():
+        moved = getattr(last, side)
+        # the foot's place relative to the turned torso is its stand place
+        rx, ry = x + moved[0] - forward, y + moved[1] - left
+        assert (c * rx + s * ry, -s * rx + c * ry) == pytest.approx((x, y))
+    # the foot on the side of the turn leads (the sideways move is short)
+    leading = "left" if turn > 0 else "right"
+    assert getattr(stages[1], f"{leading}_lift") > 0
+    with pytest.raises(ValueError, match="stand"):
+        shuffle_stages(forward, left, 0.045, turn)
+
+
+def test_a_shuffle_move_keeps_the_ball_where_the_kick_wants_it_after_the_turn():
+    """basic_kick's shuffles turn the robot by the heading error about its torso (session 30):
+    the move must put the ball, seen off the spot, back on the spot in the turned frame."""
+    expected = (0.19, 0.05)
+    alignment = basic_kick_module.Alignment(0.02, -0.01, 9.0)
+    forward, left, turn = basic_kick_module.shuffle_move(alignment, expected)
+    assert turn == pytest.approx(math.radians(9.0))
+    bx, by = expected[0] + 0.02 - forward, expected[1] - 0.01 - left
+    c, s = math.cos(turn), math.sin(turn)
+    assert (c * bx + s * by, -s * bx + c * by) == pytest.approx(expected)
+    small = basic_kick_module.Alignment(0.02, -0.01, 1.0)
+    assert basic_kick_module.shuffle_move(small, expected) == pytest.approx((0.02, -0.01, 0.0))
+
+
+def test_a_turning_shuffle_turns_the_standing_robot():
+    """Measured when written (session 30): 7.2-8.1 deg of 8 on every type, 0 without the turn."""
+    session = Session(SessionConfig(seed=1, beam_noise=False))
+    try:
+        driver = stand_up(session, 3)
+        before = driver.robot.torso_yaw_deg()
+        shuffle_in_place(driver, 0.0, 0.0, math.radians(8.0))
+        assert driver.is_standing()
+        assert driver.robot.torso_yaw_deg() - before == pytest.approx(8.0, abs=2.0)
+    finally:
+        session.close()
+
+
 def _shuffle_targets(roll_deg: float, cycles: int) -> dict[str, float]:
     """The leg targets a fresh shuffle (3 cm forward, 1 cm left) writes on its ``cycles``-th
     cycle, every cycle seeing the torso rolled ``roll_deg``."""
