@@ -457,7 +457,8 @@ class BasicKickSkill(Skill):
         ):
             self.foot = self._choose_foot(context, (target_x, target_y))
         motion, long = motion_for(world.robot.robot_type, self.motions, self.foot, distance)
-        aim = motion.aim_deg if self.foot == "left" else -motion.aim_deg
+        aim_deg = motion.aim_for(strength_for(motion, distance))
+        aim = aim_deg if self.foot == "left" else -aim_deg
         target = aimed_target(world.ball.position[:2], (target_x, target_y), aim)
         alignment = self._alignment(context, motion, target)
         if self.phase in ("approach", "back_off"):

@@ -129,6 +129,10 @@ class KickMotion:
     #: this much the other way so that the ball goes where it is asked. Why: the long kicks
     #: searched on the bounce contacts send the ball 9-13 deg to the left (session 20)
     aim_deg: float = 0.0
+    #: measured (strength, deg) pairs, the strength increasing: the ball's direction off the
+    #: facing per swing strength, as ``aim_deg`` (which it replaces when present). Why: the long
+    #: kick's weakest swings send the ball 8-9 deg further out than its full swing (session 30)
+    aims: tuple[tuple[float, float], ...] = ()
     #: the landing catch after the swing (``behaviors/kick_recovery.py``); None: off, the
     #: keyframed landing plays whatever the torso does
     catch: CatchParams | None = None
@@ -142,6 +146,13 @@ class KickMotion:
         if not self.distances:
             raise ValueError(f"kick {self.name!r} has no distance calibration")
         return _interpolate(self.distances, distance_m, 1, 0)
+
+    def aim_for(self, strength: float) -> float:
+        """The ball's direction off the facing (deg, :attr:`aim_deg`) for a swing of
+        ``strength``: interpolated in :attr:`aims` (clipped to its ends) where there is one."""
+        if not self.aims:
+            return self.aim_deg
+        return _interpolate(self.aims, strength, 0, 1)
 
     def gap_for(self, distance_m: float) -> float:
         """The ball gap (m) that :attr:`gap_distances` gives for ``distance_m``, interpolated
@@ -221,6 +232,7 @@ def parse_kicks(data: Mapping[str, Any], source: str) -> dict[str, KickMotion]:
             distances=_parse_distances(entry.get("distances", []), f"{where}.distances"),
             gap_distances=_parse_gaps(entry.get("gap_distances", []), f"{where}.gap_distances"),
             aim_deg=check_number(entry.get("aim_deg", 0.0), f"{where}.aim_deg"),
+            aims=_parse_aims(entry.get("aims", []), f"{where}.aims"),
             catch=parse_catch(entry["catch"], f"{where}.catch") if "catch" in entry else None,
         )
     return kicks
@@ -233,6 +245,7 @@ _KICK_OPTIONAL = {
     "distances",
     "gap_distances",
     "aim_deg",
+    "aims",
     "catch",
 }
 
@@ -256,6 +269,16 @@ def _parse_gaps(data: Any, where: str) -> tuple[tuple[float, float], ...]:
     for (d0, g0), (d1, g1) in itertools.pairwise(table):
         if not (d1 > d0 and g1 < g0):
             raise PoseError(f"{where}: distances must increase and gaps decrease")
+    return table
+
+
+def _parse_aims(data: Any, where: str) -> tuple[tuple[float, float], ...]:
+    """``[[strength, deg], ...]`` with the strength increasing within [0, 1]."""
+    table = _parse_pairs(data, where, "strength, deg")
+    if any(s1 <= s0 for (s0, _), (s1, _) in itertools.pairwise(table)):
+        raise PoseError(f"{where}: strengths must increase")
+    if table and not all(0.0 <= s <= 1.0 for s, _ in table):
+        raise PoseError(f"{where}: strengths must lie in [0, 1]")
     return table
 
 

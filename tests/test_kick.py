@@ -761,3 +761,21 @@ def test_the_shuffle_shifts_the_weight_as_far_towards_the_support_foot_on_every_
     shift = shuffle_weight_shift(3)
     assert shift > basic_kick_module.SHUFFLE_WEIGHT_SHIFT_M + 0.01
     assert abs(shuffle_stages(0.03, 0.0, shift)[0].torso[1]) == pytest.approx(shift)
+
+
+def test_the_long_kick_aims_per_strength_and_bad_aim_tables_are_refused():
+    """The long kick's weakest swings send the ball 8-9 deg further out than its full swing
+    (session 30): basic_kick faces further away for them (``aims``), and the table is checked
+    like the distance tables."""
+    long = kick_motion(0, None, "left", aligned=True, long=True)
+    assert long.aim_for(0.1) > long.aim_for(1.0) + 5.0
+    assert long.aim_for(0.0) == long.aim_for(0.1)  # clipped to the table's ends
+    short = kick_motion(0, None, "left", aligned=True)
+    assert short.aim_for(0.5) == short.aim_deg
+    entry = {
+        "frames": [{"duration": 0.2, "pose": "stand"}, {"duration": 0.2, "pose": "stand"}],
+        "swing": {"frames": [1], "fast_s": 0.2, "slow_s": 0.4},
+        "aims": [[0.5, 10.0], [0.2, 12.0]],
+    }
+    with pytest.raises(PoseError, match="aims: strengths must increase"):
+        parse_kicks({"kick_left": entry}, "test")
