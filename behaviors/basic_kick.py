@@ -15,7 +15,8 @@ Phases:
    will play (:func:`motion_for`: the short one, or the long one beyond its table). Where the
    ball should lie ahead of the toe depends on the distance asked for when the kick is
    calibrated by its ball gap (:func:`ball_gap_for`): a shorter kick lines the ball up further
-   ahead.
+   ahead. An estimate that lies in view but is not seen (the ball moved while out of view) is
+   searched for instead of walked to (:meth:`BasicKickSkill._searching`).
 2. ``settle``: stand still (``walk_velocity`` 0, then the stand pose), then measure where the
    ball lies against where the kick expects it (``ball_gap_m``, ``ball_side_m`` of the kick,
    relative to the kicking foot in the stand pose) from the mean of the ball's torso-relative
