@@ -228,8 +228,9 @@ def test_a_kick_that_goes_left_is_aimed_right_of_the_target():
     assert math.dist(turned, (1.0, 2.0)) == pytest.approx(10.0)
     assert aimed_target((1.0, 2.0), (11.0, 2.0), 0.0) == pytest.approx((11.0, 2.0))
     long = kick_motion(0, None, "left", aligned=True, long=True)
-    assert long.aim_deg > 0.0
-    assert kick_motion(0, None, "left", aligned=True).aim_deg == 0.0
+    short = kick_motion(0, None, "left", aligned=True)
+    # the short kick's ball goes 2-3 deg outwards (session 30), the long one's about 10
+    assert long.aim_deg > short.aim_deg > 0.0
 
 
 def test_basic_kick_plays_the_long_motion_only_beyond_the_plain_table():
