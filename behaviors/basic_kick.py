@@ -432,9 +432,8 @@ class BasicKickSkill(Skill):
         self._seen_time: float | None = None
         self._head_up = 0
         self._calm = CalmWatch()
-        #: the turn (deg/s) of a search for a ball not where it was last seen, None: no search
-        self._search_turn: float | None = None
-        self._search_cycles = 0
+        #: cycles into a search for a ball not where it was last seen, None: no search
+        self._search_cycles: int | None = None
 
     def validate(self, target_x: float, target_y: float, distance: float | str = LONG) -> None:
         if not (math.isfinite(target_x) and math.isfinite(target_y)):
@@ -503,17 +502,16 @@ class BasicKickSkill(Skill):
         real ball into view (``scripts/kick/approach_trace.py``: 4.6 s lost walking to a ball 1
         m ahead that lay 2.4 m behind)."""
         ball = world.ball
-        if self._search_turn is not None:
+        if self._search_cycles is not None:
             self._search_cycles += 1
             seen_again = ball.time_since_seen < STALE_BALL_S and self._search_cycles > 1
             if seen_again or self._search_cycles * CYCLE_SECONDS > SEARCH_MAX_S:
-                self._search_turn = None
-            return self._search_turn is not None
+                self._search_cycles = None
+            return self._search_cycles is not None
         stale = ball.time_since_seen > STALE_BALL_S
         in_view = abs(world.bearing_to(ball.position)) < STALE_VIEW_DEG
         near = STALE_VIEW_MIN_M < world.distance_to(ball.position) < STALE_VIEW_M
         if stale and in_view and near:
-            self._search_turn = SEARCH_TURN_DEG_S
             self._search_cycles = 0
             return True
         return False
@@ -521,14 +519,14 @@ class BasicKickSkill(Skill):
     def _search(self, context: SkillContext) -> None:
         """Stand and sweep the head left, then right (its 120 deg view covers all round in
         :data:`SEARCH_SWEEP_S`), then turn on the spot while looking ahead."""
-        assert self._search_turn is not None
+        assert self._search_cycles is not None
         sweep = self._search_cycles * CYCLE_SECONDS
         if sweep < SEARCH_SWEEP_S:
             context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, 0.0)
             yaw = SEARCH_HEAD_YAW_DEG if sweep < SEARCH_SWEEP_S / 3.0 else -SEARCH_HEAD_YAW_DEG
             context.commands.set_targets({"hj1": yaw, "hj2": HEAD_PITCH_DEG})
             return
-        context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, self._search_turn)
+        context.manager.execute_sub_behavior("walk_velocity", 0.0, 0.0, SEARCH_TURN_DEG_S)
         self._look_down(context)
 
     # ------------------------------------------------------------------ phases

@@ -277,9 +277,14 @@ def _parse_aims(data: Any, where: str) -> tuple[tuple[float, float], ...]:
     table = _parse_pairs(data, where, "strength, deg")
     if any(s1 <= s0 for (s0, _), (s1, _) in itertools.pairwise(table)):
         raise PoseError(f"{where}: strengths must increase")
+    _check_strengths(table, where)
+    return table
+
+
+def _check_strengths(table: tuple[tuple[float, float], ...], where: str) -> None:
+    """Every strength of a ``[[strength, ...], ...]`` table within [0, 1]."""
     if table and not all(0.0 <= s <= 1.0 for s, _ in table):
         raise PoseError(f"{where}: strengths must lie in [0, 1]")
-    return table
 
 
 def _parse_distances(data: Any, where: str) -> tuple[tuple[float, float], ...]:
@@ -289,8 +294,7 @@ def _parse_distances(data: Any, where: str) -> tuple[tuple[float, float], ...]:
     for (s0, d0), (s1, d1) in itertools.pairwise(table):
         if not (s1 > s0 and d1 > d0):
             raise PoseError(f"{where}: strengths and distances must both increase")
-    if table and not all(0.0 <= s <= 1.0 for s, _ in table):
-        raise PoseError(f"{where}: strengths must lie in [0, 1]")
+    _check_strengths(table, where)
     return table
 
 

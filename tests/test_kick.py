@@ -804,4 +804,4 @@ def test_the_approach_searches_for_a_ball_not_where_it_was_last_seen():
     assert skill._searching(world(5.0, 150.0, 1.0))
     assert not skill._searching(world(0.05, 150.0, 1.0))  # seen again
     skill.reset()
-    assert skill._search_turn is None
+    assert skill._search_cycles is None
