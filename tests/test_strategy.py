@@ -131,15 +131,17 @@ def test_without_a_dribble_skill_it_kicks_anywhere():
     assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
 
 
-def test_by_default_it_dribbles_all_the_way_and_with_a_kick_range_it_shoots_in_range():
+def test_it_shoots_within_the_kick_range_and_dribbles_outside_it_or_without_one():
     behavior = RecordingBehavior("walk", "dribble", "basic_kick")
+    Strategy().decide(world(ball=(8.0, 0.5), pose=(7.7, 0.5, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")  # 7 m out: beyond the default 6 m
     Strategy().decide(world(ball=(10.0, 0.5), pose=(9.7, 0.5, 0.0)), behavior)
-    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
-    shooter = StrategyConfig(attack=AttackConfig(kick_range_m=7.0))
-    Strategy(shooter).decide(world(ball=(10.0, 0.5), pose=(9.7, 0.5, 0.0)), behavior)
     assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
     # closer than dribble_in_m it walks the ball in even with a kick range
-    Strategy(shooter).decide(world(ball=(13.0, 0.5), pose=(12.7, 0.5, -5.0)), behavior)
+    Strategy().decide(world(ball=(13.0, 0.5), pose=(12.7, 0.5, -5.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+    dribbler = StrategyConfig(attack=AttackConfig(kick_range_m=0.0))
+    Strategy(dribbler).decide(world(ball=(10.0, 0.5), pose=(9.7, 0.5, 0.0)), behavior)
     assert behavior.calls[-1][:2] == ("dribble", "lfdl")
 
 
@@ -436,9 +438,10 @@ def test_walking_round_a_still_ball_near_the_goal_starts_no_stall_shot_if_told_s
             strategy.decide(scene, behavior)
         return behavior.calls[-1][0]
 
-    any_still_ball = AttackConfig(stall_opponent_m=0.0)
+    # no range shot (kick_range_m 0): the stall decides
+    any_still_ball = AttackConfig(stall_opponent_m=0.0, kick_range_m=0.0)
     assert last_skill_after_walking_round(any_still_ball) == "basic_kick"
-    only_dribbling = AttackConfig(stall_opponent_m=0.0, stall_only_dribbling=True)
+    only_dribbling = replace(any_still_ball, stall_only_dribbling=True)
     assert last_skill_after_walking_round(only_dribbling) == "walk"
 
 
@@ -456,9 +459,11 @@ def test_a_still_ball_with_no_opponent_near_starts_no_stall_shot():
         return behavior.calls[-1][0]
 
     far, near = (14.5, 0.0), (12.9, 0.2)
-    assert last_skill_at_a_still_ball(AttackConfig(stall_opponent_m=0.0), far) == "basic_kick"
-    assert last_skill_at_a_still_ball(AttackConfig(), far) == "dribble"
-    assert last_skill_at_a_still_ball(AttackConfig(), near) == "basic_kick"
+    no_range = AttackConfig(kick_range_m=0.0)  # no range shot: the stall decides
+    any_ball = replace(no_range, stall_opponent_m=0.0)
+    assert last_skill_at_a_still_ball(any_ball, far) == "basic_kick"
+    assert last_skill_at_a_still_ball(no_range, far) == "dribble"
+    assert last_skill_at_a_still_ball(no_range, near) == "basic_kick"
 
 
 @pytest.mark.parametrize(
@@ -546,17 +551,16 @@ def test_a_stall_beside_the_goal_is_escaped_to_its_front_if_told_so():
             strategy.decide(scene, behavior)
         return behavior.calls
 
-    any_still_ball = AttackConfig(stall_opponent_m=0.0)
+    # no range shot (kick_range_m 0): the stall decides
+    any_still_ball = AttackConfig(stall_opponent_m=0.0, kick_range_m=0.0)
     assert calls_after_a_stall_beside_the_goal(any_still_ball)[-1][0] == "basic_kick"
-    calls = calls_after_a_stall_beside_the_goal(
-        AttackConfig(stall_opponent_m=0.0, stall_shot_max_y_m=1.0)
-    )
+    calls = calls_after_a_stall_beside_the_goal(replace(any_still_ball, stall_shot_max_y_m=1.0))
     assert all(call[0] != "basic_kick" for call in calls)
     name, *args = calls[-1]
     heading = args[1] if name == "dribble" else args[2]
     assert heading == pytest.approx(-90.0)  # towards (13, 0), in front of the goal centre
     # inside the posts' line the stall shot is still taken
-    inside = AttackConfig(stall_opponent_m=0.0, stall_shot_max_y_m=2.0)
+    inside = replace(any_still_ball, stall_shot_max_y_m=2.0)
     assert calls_after_a_stall_beside_the_goal(inside)[-1][0] == "basic_kick"
 
 
@@ -720,7 +724,8 @@ def test_a_ball_held_at_the_feet_for_seconds_makes_the_player_step_back():
 
 
 def test_a_stall_shot_that_cannot_finish_is_given_up_for_an_escape():
-    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble", "basic_kick")
+    no_range = StrategyConfig(attack=AttackConfig(kick_range_m=0.0))  # the stall shot only
+    strategy, behavior = Strategy(no_range), RecordingBehavior("walk", "dribble", "basic_kick")
     keeper = SimpleNamespace(unum=1, position=(12.8, 0.2))  # at the ball, never lets it go
     scene = world((12.5, 0.0), (12.2, 0.0, 0.0), opponents=[keeper])
     names = []
