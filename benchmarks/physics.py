@@ -82,7 +82,9 @@ TRACES = Path(__file__).resolve().parents[2] / "shared" / "reference" / "rcssser
 # --------------------------------------------------------------------------------------------
 
 
-def _world_with_robots(substeps: int, robots: int) -> tuple[PhysicsWorld, list[SimRobot]]:
+def world_with_robots(substeps: int, robots: int) -> tuple[PhysicsWorld, list[SimRobot]]:
+    """A plain ground with ``robots`` robots of types 0-4 in turn, 2 m apart in two rows,
+    dropped from 0.4 m: the scene every speed figure here (and ``scripts/physics``) times."""
     world = PhysicsWorld(substeps=substeps)
     plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, physicsClientId=world.client)
     pybullet.createMultiBody(0, plane, physicsClientId=world.client)
@@ -95,7 +97,7 @@ def _world_with_robots(substeps: int, robots: int) -> tuple[PhysicsWorld, list[S
 
 
 def measure(substeps: int, robots: int, cycles: int) -> float:
-    world, team = _world_with_robots(substeps, robots)
+    world, team = world_with_robots(substeps, robots)
     start = time.perf_counter()
     for c in range(cycles):
         s = math.sin(0.1 * c)
@@ -135,7 +137,7 @@ SPLIT_SCOPES = (
 
 def bullet_split(robots: int = 22, cycles: int = 30) -> dict[str, float]:
     """Share of the step (0..1) each Bullet scope takes, plus ``contacts_per_robot``."""
-    world, _ = _world_with_robots(2, robots)
+    world, _ = world_with_robots(2, robots)
     for _ in range(20):  # land and settle
         world.step_cycle()
     with tempfile.TemporaryDirectory() as folder:
@@ -167,7 +169,7 @@ def solver_analytics(robots: int = 22, steps: int = 20) -> tuple[float, float]:
     """Mean iterations the solver used per island and the residual it left
     (``reportSolverAnalytics``): all of them used means the step never converges early, so
     the iteration count sets the solver's cost."""
-    world, team = _world_with_robots(2, robots)
+    world, team = world_with_robots(2, robots)
     for _ in range(20):
         world.step_cycle()
     pybullet.setPhysicsEngineParameter(reportSolverAnalytics=1, physicsClientId=world.client)
@@ -433,7 +435,7 @@ VARIANTS: dict[str, Callable[[], contextlib.AbstractContextManager]] = {
 def step_ms(robots: int, cycles: int) -> float:
     """CPU milliseconds per cycle of ``robots`` idle standing robots (a session's base substep
     count; CPU time, so other processes on the machine disturb it less than wall time)."""
-    world, _ = _world_with_robots(sim.session.BASE_SUBSTEPS, robots)
+    world, _ = world_with_robots(sim.session.BASE_SUBSTEPS, robots)
     for _ in range(20):
         world.step_cycle()
     start = time.process_time()
@@ -446,7 +448,7 @@ def step_ms(robots: int, cycles: int) -> float:
 
 def idle_stance(robot_type: int, seconds: float = 4.0) -> tuple[float, float]:
     """Torso height drop (m) and largest tilt (deg) of an idle robot over ``seconds``."""
-    world, (robot,) = _world_with_robots(sim.session.BASE_SUBSTEPS, 1)
+    world, (robot,) = world_with_robots(sim.session.BASE_SUBSTEPS, 1)
     robot.remove()
     robot = SimRobot(world, robot_type)
     robot.place(0.0, 0.0, 0.4, 0.0)

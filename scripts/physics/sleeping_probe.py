@@ -26,7 +26,7 @@ import time
 import pybullet
 
 from agent.match import run_match
-from benchmarks.physics import _world_with_robots
+from benchmarks.physics import world_with_robots
 
 #: Bullet's sleep timeout (btMultiBody): 2 s of stillness, in cycles.
 SLEEP_CYCLES = 100
@@ -34,7 +34,7 @@ SLEEP_CYCLES = 100
 
 def idle_cycle_ms(sleeping: bool, settle: int = 200, cycles: int = 100) -> float:
     """CPU ms per cycle of 22 idle robots after ``settle`` cycles."""
-    world, team = _world_with_robots(2, 22)
+    world, team = world_with_robots(2, 22)
     if sleeping:
         for robot in team:
             pybullet.changeDynamics(
