@@ -333,6 +333,9 @@ class Ball:
         self._world = world
         self._body_id = body_id
         self.physics = physics
+        #: bodies the ball touched in the substeps of this cycle before the last one
+        self._touched: set[int] = set()
+        world.register_state_holder(self)
 
     @classmethod
     def create(
@@ -415,11 +418,33 @@ class Ball:
         return matrix
 
     def touching_bodies(self) -> frozenset[int]:
-        """Ids of the bodies in contact with the ball after the last step (ground included)."""
+        """Ids of the bodies the ball touched during the last cycle (ground included), in any
+        of its substeps. Why every substep: Bullet reports the contacts of the last substep
+        only, and a foot that strikes the ball and bounces off within the cycle was missed, so
+        the referee saw the kick-off taken seconds late (the ball rolling at 1.1 s, PlayOn at
+        3.4 s in an 11 v 11 match, seed 0)."""
+        return frozenset(self._touched | self._contacts_now())
+
+    def _contacts_now(self) -> set[int]:
         contacts = pybullet.getContactPoints(
             bodyA=self._body_id, physicsClientId=self._world.client
         )
-        return frozenset(c[2] for c in contacts)
+        return {c[2] for c in contacts}
+
+    # the world's state-holder hooks: collect the contacts of every substep of a cycle
+    def before_cycle(self) -> None:
+        self._touched = set()
+
+    def before_substep(self, fraction: float) -> None:
+        if fraction > 0.0:  # the substep before this one ended with these contacts
+            self._touched |= self._contacts_now()
+
+    def python_state(self) -> None:
+        """Nothing to keep: the touches are collected anew every cycle."""
+        return None
+
+    def restore_python_state(self, state: None) -> None:
+        self._touched = set()
 
     def place(self, position: Vec3, velocity: Vec3 = (0.0, 0.0, 0.0)) -> None:
         """Trainer/referee placement: put the ball at ``position`` with ``velocity`` and no spin.

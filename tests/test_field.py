@@ -182,6 +182,21 @@ def test_world_transform_and_touching_bodies(pitch):
     assert field.ground_id not in ball.touching_bodies()
 
 
+def test_a_touch_in_an_early_substep_counts_for_the_cycle(pitch):
+    """A ball that strikes the ground and bounces clear within one cycle touched it: Bullet
+    keeps only the last substep's contacts, which a referee reading them once per cycle missed
+    (a kick-off taken at 1.1 s went unnoticed until 3.4 s)."""
+    world, field, ball = pitch
+    ball.place((3.0, -1.0, BALL_RADIUS + 0.002), velocity=(0.0, 0.0, -3.0))
+    world.step_cycle()
+    assert ball.velocity()[2] > 1.0  # bounced and flying up
+    last_substep = pybullet.getContactPoints(bodyA=ball.body_id, physicsClientId=world.client)
+    assert not last_substep  # clear of the ground at the cycle's end ...
+    assert field.ground_id in ball.touching_bodies()  # ... yet it touched it in this cycle
+    world.step_cycle()
+    assert field.ground_id not in ball.touching_bodies()  # the next cycle starts afresh
+
+
 # ------------------------------------------------------------------------- goals
 
 
