@@ -800,10 +800,12 @@ class FootShuffle:
         torso."""
         self._ik = leg_ik_for(robot_type)
         self._stand = _stand_feet(robot_type)
-        feet_ego = {side: (float(t[1, 3]), float(-t[0, 3])) for side, t in self._stand.items()}
-        self._stand_ego = feet_ego
+        #: each foot's stand place, ego x, y relative to the torso (native x is the robot's right)
+        self._stand_ego = {
+            side: (float(t[1, 3]), float(-t[0, 3])) for side, t in self._stand.items()
+        }
         weight_shift = shuffle_weight_shift(robot_type)
-        self._stages = shuffle_stages(forward, left, weight_shift, turn, feet_ego)
+        self._stages = shuffle_stages(forward, left, weight_shift, turn, self._stand_ego)
         self._elapsed = 0.0
         self._start = _ShuffleStage(0.0, (0.0, 0.0), (0.0, 0.0), (0.0, 0.0))
 
