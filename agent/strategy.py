@@ -240,6 +240,9 @@ class Strategy:
         self._search_turn: float | None = None
         #: sprinting to the approach point (see :attr:`AttackConfig.sprint_m`)
         self._sprinting = False
+        #: last cycle this player shot from within the kick range (see
+        #: :attr:`AttackConfig.kick_range_hold_m`)
+        self._range_shot = False
 
     def decide(self, world, behavior) -> Decision:
         """Pick this cycle's behaviour (through ``behavior.execute``), any beam and the claim
@@ -251,7 +254,7 @@ class Strategy:
         if not self._was_active:
             self._stall.reset()
         if not active:
-            self._shooting = self._sprinting = False
+            self._shooting = self._sprinting = self._range_shot = False
             self._snap_stop_since = None
         self._was_active = False
         if not ball_lost(world):
@@ -439,6 +442,9 @@ class Strategy:
             return
         attack = self.config.attack
         bx, by = world.ball.position
+        range_shot = self._range_shot  # a shot from within the range under way
+        range_m = attack.kick_range_m + (attack.kick_range_hold_m if range_shot else 0.0)
+        self._range_shot = False
         if self._yielding(world) and "walk_velocity" in skills:
             self._dribbling = False
             behavior.execute("walk_velocity", 0.0, 0.0, 0.0)
@@ -453,16 +459,17 @@ class Strategy:
             self._end_overdue_shot(world, (bx, by))
         if _no_stall_shot_at((bx, by), attack):
             self._shooting = False
-        goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world))
+        goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world), range_shot)
         detour = self._detour(world, (bx, by), (goal_x, goal_y))
         if detour is not None:
             goal_x, goal_y = detour
         to_goal = math.atan2(goal_y - by, goal_x - bx)
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
         can_dribble = "dribble" in skills
-        in_range = to_goal_m < attack.kick_range_m and to_goal_m >= attack.dribble_in_m
+        in_range = to_goal_m < range_m and to_goal_m >= attack.dribble_in_m
         if "basic_kick" in skills and (in_range or not can_dribble or self._shooting):
             self._dribbling = False
+            self._range_shot = in_range
             finished = behavior.execute("basic_kick", goal_x, goal_y, "long")
             self._shooting = self._shooting and not finished
             return
@@ -706,12 +713,16 @@ class Strategy:
         )
 
     def _escape_aim(
-        self, world, ball: tuple[float, float], aim: tuple[float, float]
+        self, world, ball: tuple[float, float], aim: tuple[float, float], range_shot: bool
     ) -> tuple[float, float]:
         """``aim``, or while escaping a stall a point 5 m from the ball ``escape_deg`` off the
         line to ``aim`` (from beside the goal: the point in front of it, see
         :attr:`AttackConfig.stall_shot_max_y_m`). A stall counts only while the player is at
-        the ball."""
+        the ball. A stall during a shot from within the kick range (``range_shot``) starts no
+        escape: its ball lies still while the kick lines up, and an escape turned the shot's
+        aim 70 deg away and sent the robot round the ball again (session 32,
+        ``scripts/attack/match_probe.py --seed 2 --window 50 80``: 16 s of approach, settle
+        and back-off before the kick)."""
         attack = self.config.attack
         now = world.time or 0.0
         at_ball = math.dist((world.pose.x, world.pose.y), ball) < attack.dribble_keep_m
@@ -737,6 +748,8 @@ class Strategy:
                 self._stall.reset()  # in the finishing zone: keep pushing it over the line
             elif near_goal:
                 self._shooting, self._shot_since = True, now
+            elif range_shot:
+                self._stall.reset()  # the shot lines up: no escape
             else:
                 self._escape = (now + attack.escape_s, self._escape_side(world, ball))
         if self._escape is None:

@@ -41,6 +41,13 @@ class AttackConfig:
     #: goalkeeper's reach scored where the dribble into the keeper stalled (3 v 3 figures in
     #: config/team.yaml)
     kick_range_m: float = 6.0
+    #: ... and a shot under way goes on while the ball stays within ``kick_range_m`` plus
+    #: this (hysteresis). Why: the ball's estimate jitters by centimetres, and an attacker that
+    #: brought the ball to the edge of the range switched between the shot's approach and the
+    #: dribble up to seven times in three seconds, each switch restarting both skills (session
+    #: 32, ``python scripts/attack/shot_probe.py --players 3 --matches 4 --seed 1``: 13 of 19
+    #: shots ended within a second in their approach, 4 kicked; figures in config/team.yaml)
+    kick_range_hold_m: float = 1.0
     #: ... but closer than this, walk it in with the dribble (surer than a kick that falls)
     dribble_in_m: float = 2.5
     #: the approach point lies this far behind the ball on the line goal -> ball

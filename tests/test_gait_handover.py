@@ -54,6 +54,25 @@ def test_a_walk_started_mid_stride_continues_the_other_walks_step():
     assert first_phase == _next_phase(walk_phase)
 
 
+def test_a_kick_approach_started_mid_stride_continues_the_walks_step():
+    """basic_kick walks to the ball as a sub-behaviour; that walk carries on the step the
+    top-level walk had under way (the attacker's hand-over from its dribble to a shot)."""
+    session, agent = start_dribble_episode(0, 0.0, seed=0)
+    try:
+        x, y, _ = agent.robot.torso_position()
+        agent.trainer(f"(ball (pos {x + 1.0:.4f} {y:.4f} {BALL_Z}) (vel 0 0 0))")
+        for _ in range(30):
+            agent.run("walk_velocity", 0.4, 0.0, 0.0)
+        walk_phase = agent.behavior.skill("walk_velocity").phase
+        agent.run("basic_kick", 15.0, 0.0, "long")
+        assert agent.behavior.running == () and agent.behavior.current.name == "basic_kick"
+        assert agent.behavior.skill("basic_kick").phase == "approach"
+        assert walk_phase[0] >= 0
+        assert agent.behavior.skill("walk").phase == _next_phase(walk_phase)
+    finally:
+        session.close()
+
+
 def test_a_right_footed_dribble_starts_its_own_steps():
     """The mirrored gait's engine walks in the mirrored frame: no hand-over, a fresh start."""
     walk_phase, first_phase, _ = _walk_then(("dribble", "lfdl", 0.0, "right"), after_cycles=5)

@@ -145,6 +145,26 @@ def test_it_shoots_within_the_kick_range_and_dribbles_outside_it_or_without_one(
     assert behavior.calls[-1][:2] == ("dribble", "lfdl")
 
 
+def test_a_shot_under_way_goes_on_at_the_edge_of_the_kick_range():
+    # the ball's estimate jitters: a shot started 5.9 m out goes on at 6.1 m (kick_range_hold_m)
+    behavior = RecordingBehavior("walk", "dribble", "basic_kick")
+    strategy = Strategy()
+    strategy.decide(world(ball=(9.1, 0.5), pose=(8.8, 0.5, 0.0)), behavior)
+    assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
+    strategy.decide(world(ball=(8.9, 0.5), pose=(8.8, 0.5, 0.0)), behavior)
+    assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
+    # ... but not once the ball is beyond the hold (the dribble takes it on)
+    strategy.decide(world(ball=(7.8, 0.5), pose=(7.5, 0.5, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+    # a fresh start at 6.1 m dribbles: the hold is for a shot under way only
+    strategy.decide(world(ball=(8.9, 0.5), pose=(8.6, 0.5, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+    no_hold = Strategy(StrategyConfig(attack=AttackConfig(kick_range_hold_m=0.0)))
+    no_hold.decide(world(ball=(9.1, 0.5), pose=(8.8, 0.5, 0.0)), behavior)
+    no_hold.decide(world(ball=(8.9, 0.5), pose=(8.6, 0.5, 0.0)), behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+
+
 def test_a_player_with_a_closer_teammate_holds_its_formation_place_facing_the_ball():
     mate = SimpleNamespace(unum=10, position=(0.5, 0.0))
     behavior = RecordingBehavior("walk", "dribble", "basic_kick")
@@ -502,6 +522,18 @@ def test_a_stall_near_the_goal_is_answered_with_a_shot_that_runs_to_its_end():
     scene.ball.position = (12.9, 0.1)  # the ball moved while the kick lines up: still kicking
     strategy.decide(scene, behavior)
     assert behavior.calls[-1][0] == "basic_kick"
+
+
+def test_a_range_shot_lining_up_at_a_still_ball_starts_no_escape():
+    # 5 m out (beyond stall_shot_m), an opponent beside the ball: the ball lies still while the
+    # kick lines up, which is no stall to escape from (the escape turned the aim 70 deg away)
+    strategy, behavior = Strategy(), RecordingBehavior("walk", "dribble", "basic_kick")
+    defender = SimpleNamespace(unum=5, position=(10.3, 0.9))
+    scene = world((10.0, 0.5), (9.7, 0.5, 0.0), opponents=[defender])
+    for k in range(260):  # 5.2 s: a stall after 4 s
+        scene.time = 10.0 + 0.02 * k
+        strategy.decide(scene, behavior)
+    assert {call for call in behavior.calls} == {("basic_kick", 15.0, 0.0, "long")}
 
 
 def test_a_stall_in_the_finishing_zone_is_pushed_over_the_line_if_told_so():
