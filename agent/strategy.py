@@ -240,6 +240,9 @@ class Strategy:
         self._search_turn: float | None = None
         #: sprinting to the approach point (see :attr:`AttackConfig.sprint_m`)
         self._sprinting = False
+        #: until when (world time) and which way (+1 left, -1 right) the aim turns after the
+        #: team's kick-off (see :attr:`AttackConfig.kickoff_turn_deg`)
+        self._kickoff_turn: tuple[float, float] | None = None
         #: last cycle this player shot from within the kick range (see
         #: :attr:`AttackConfig.kick_range_hold_m`)
         self._range_shot = False
@@ -460,6 +463,7 @@ class Strategy:
         if _no_stall_shot_at((bx, by), attack):
             self._shooting = False
         goal_x, goal_y = self._escape_aim(world, (bx, by), self.aim(world), range_shot)
+        goal_x, goal_y = self._kickoff_aim(world, (bx, by), (goal_x, goal_y))
         detour = self._detour(world, (bx, by), (goal_x, goal_y))
         if detour is not None:
             goal_x, goal_y = detour
@@ -773,6 +777,34 @@ class Strategy:
             return
         self._shooting = False
         self._escape = (now + attack.escape_s, self._escape_side(world, ball))
+
+    def _kickoff_aim(
+        self, world, ball: tuple[float, float], aim: tuple[float, float]
+    ) -> tuple[float, float]:
+        """``aim``, or during and for :attr:`AttackConfig.kickoff_turn_s` after the team's own
+        kick-off a point 5 m from the ball ``kickoff_turn_deg`` off the line to ``aim``, on the
+        side with fewer opponents near the ball (chosen once per kick-off)."""
+        attack = self.config.attack
+        if attack.kickoff_turn_deg <= 0.0:
+            return aim
+        now = world.time or 0.0
+        if world.play_mode.lower() == f"kickoff_{world.side}":
+            side = self._kickoff_turn[1] if self._kickoff_turn else self._kickoff_side(world, ball)
+            self._kickoff_turn = (now + attack.kickoff_turn_s, side)
+        if self._kickoff_turn is None or now >= self._kickoff_turn[0]:
+            self._kickoff_turn = None
+            return aim
+        heading = math.atan2(aim[1] - ball[1], aim[0] - ball[0])
+        heading += self._kickoff_turn[1] * math.radians(attack.kickoff_turn_deg)
+        return (ball[0] + 5.0 * math.cos(heading), ball[1] + 5.0 * math.sin(heading))
+
+    def _kickoff_side(self, world, ball: tuple[float, float]) -> float:
+        """+1 (to the left, team frame y up) or -1: away from the opponents within
+        :attr:`AttackConfig.kickoff_clear_m` of the ball, to the left when they stand even."""
+        clear = self.config.attack.kickoff_clear_m
+        near = [p for p in self._opponent_positions(world) if math.dist(p, ball) < clear]
+        balance = sum(p[1] - ball[1] for p in near)
+        return -1.0 if balance > 0.0 else 1.0
 
     def _escape_side(self, world, ball: tuple[float, float]) -> float:
         """+1 (to the left, team frame y up) or -1: away from the opponents near the ball,

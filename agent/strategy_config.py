@@ -82,7 +82,11 @@ class AttackConfig:
     #: a player not behind the ball goes round it, passing this far to its side
     round_ball_m: float = 0.5
     #: aim this far from the goal centre, on the side away from a goalkeeper standing within
-    #: ``keeper_near_m`` of the goal centre (0: always aim at the centre)
+    #: ``keeper_near_m`` of the goal centre (0: always aim at the centre). 0.4 (session 32):
+    #: alone against the keeper (benchmarks/attack.py --trials 10 --seconds 60 --keeper, seeds
+    #: 0 / 100) 9 / 8 of 10 goals against 6 / 7, but 3 v 3 (benchmarks/match.py --players 3
+    #: --matches 8 --duration 120 --seed 1 / 9) 11 / 10 goals, 7 / 8 of 8 matches, against
+    #: 9 / 14 and 8 / 8 at 0.6
     aim_side_m: float = 0.6
     keeper_near_m: float = 2.5
     #: with the ball this close to the opponent goal line (m) and in front of the goal mouth
@@ -148,6 +152,15 @@ class AttackConfig:
     stall_m: float = 0.35
     escape_deg: float = 70.0
     escape_s: float = 3.0
+    #: taking the team's kick-off, and for ``kickoff_turn_s`` after it, aim this far (deg) off
+    #: the line to the goal, away from the opponents within ``kickoff_clear_m`` of the ball (0:
+    #: off). Why: the other team waits outside the centre circle straight ahead, on the far
+    #: side of the ball, which is where its approach to the ball ends; a taker dribbling
+    #: straight at it handed it the ball (3 v 3, the team taking the first kick-off scored 15
+    #: of the 47 goals of session 32's final runs)
+    kickoff_turn_deg: float = 0.0
+    kickoff_turn_s: float = 4.0
+    kickoff_clear_m: float = 4.0
     #: an opponent within ``dodge_ahead_m`` ahead of the ball and ``dodge_across_m`` of the
     #: dribble line turns the dribble ``dodge_deg`` away from it (0: never)
     dodge_ahead_m: float = 1.8

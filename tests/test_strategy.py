@@ -536,6 +536,26 @@ def test_a_range_shot_lining_up_at_a_still_ball_starts_no_escape():
     assert {call for call in behavior.calls} == {("basic_kick", 15.0, 0.0, "long")}
 
 
+def test_the_kick_off_taker_aims_away_from_the_opponent_waiting_ahead():
+    turning = Strategy(StrategyConfig(attack=AttackConfig(kickoff_turn_deg=45.0)))
+    behavior = RecordingBehavior("walk", "dribble", "basic_kick")
+    forward = SimpleNamespace(unum=10, position=(2.1, 0.4))  # outside the circle, left of centre
+    scene = world((0.0, 0.0), (-0.6, 0.0, 0.0), play_mode="KickOff_Left", opponents=[forward])
+    turning.decide(scene, behavior)
+    assert behavior.calls[-1][0] == "walk"
+    assert behavior.calls[-1][3] == pytest.approx(-45.0)  # to the right, away from it
+    # ... on for kickoff_turn_s after the kick-off, then straight at the goal again
+    scene.play_mode, scene.time = "PlayOn", 13.9
+    turning.decide(scene, behavior)
+    assert behavior.calls[-1][3] == pytest.approx(-45.0)
+    scene.time = 14.1
+    turning.decide(scene, behavior)
+    assert behavior.calls[-1][3] == pytest.approx(0.0)
+    # off by default
+    Strategy().decide(world((0.0, 0.0), (-0.6, 0.0, 0.0), play_mode="KickOff_Left"), behavior)
+    assert behavior.calls[-1][3] == pytest.approx(0.0)
+
+
 def test_a_stall_in_the_finishing_zone_is_pushed_over_the_line_if_told_so():
     def skills_at_a_blocked_ball(attack: AttackConfig, ball: tuple[float, float]) -> list[str]:
         strategy, behavior = (
