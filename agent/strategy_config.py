@@ -157,7 +157,10 @@ class AttackConfig:
     #: off). Why: the other team waits outside the centre circle straight ahead, on the far
     #: side of the ball, which is where its approach to the ball ends; a taker dribbling
     #: straight at it handed it the ball (3 v 3, the team taking the first kick-off scored 15
-    #: of the 47 goals of session 32's final runs)
+    #: of the 47 goals of session 32's final runs). Off: with 45, 3 v 3 (benchmarks/match.py
+    #: --players 3 --matches 8 --duration 120 --seed S, S = 1 / 9 / 17 / 25) 16 / 13 / 10 / 12
+    #: goals (32 of the 51 by the kick-off team), 7 / 7 / 7 / 7 of 8 matches with a goal,
+    #: against 9 / 14 / 12 / 12 goals and 8 / 8 / 8 / 7 off: more goals, more goalless matches
     kickoff_turn_deg: float = 0.0
     kickoff_turn_s: float = 4.0
     kickoff_clear_m: float = 4.0
