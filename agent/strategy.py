@@ -89,6 +89,16 @@ def opponents_restart(play_mode: str, side: str | None) -> bool:
     return not lower.endswith("_" + side)
 
 
+def _turned_aim(
+    ball: tuple[float, float], aim: tuple[float, float], side: float, turn_deg: float
+) -> tuple[float, float]:
+    """A point 5 m from ``ball`` on the line to ``aim`` turned ``turn_deg`` to the ``side``
+    (+1 left, -1 right): where the escape from a stall and the kick-off's turn aim."""
+    heading = math.atan2(aim[1] - ball[1], aim[0] - ball[0])
+    heading += side * math.radians(turn_deg)
+    return (ball[0] + 5.0 * math.cos(heading), ball[1] + 5.0 * math.sin(heading))
+
+
 def ball_lost(world) -> bool:
     """Whether the ball has gone unseen for :data:`BALL_LOST_S` or was never seen."""
     ball = world.ball
@@ -764,9 +774,7 @@ class Strategy:
             return aim
         if side == 0.0:
             return (HALF_LENGTH - attack.stall_centre_back_m, 0.0)
-        heading = math.atan2(aim[1] - ball[1], aim[0] - ball[0])
-        heading += side * math.radians(attack.escape_deg)
-        return (ball[0] + 5.0 * math.cos(heading), ball[1] + 5.0 * math.sin(heading))
+        return _turned_aim(ball, aim, side, attack.escape_deg)
 
     def _end_overdue_shot(self, world, ball: tuple[float, float]) -> None:
         """End a stall shot running longer than :attr:`AttackConfig.shot_max_s` and start an
@@ -794,26 +802,31 @@ class Strategy:
         if self._kickoff_turn is None or now >= self._kickoff_turn[0]:
             self._kickoff_turn = None
             return aim
-        heading = math.atan2(aim[1] - ball[1], aim[0] - ball[0])
-        heading += self._kickoff_turn[1] * math.radians(attack.kickoff_turn_deg)
-        return (ball[0] + 5.0 * math.cos(heading), ball[1] + 5.0 * math.sin(heading))
+        return _turned_aim(ball, aim, self._kickoff_turn[1], attack.kickoff_turn_deg)
 
     def _kickoff_side(self, world, ball: tuple[float, float]) -> float:
         """+1 (to the left, team frame y up) or -1: away from the opponents within
-        :attr:`AttackConfig.kickoff_clear_m` of the ball, to the left when they stand even."""
-        clear = self.config.attack.kickoff_clear_m
-        near = [p for p in self._opponent_positions(world) if math.dist(p, ball) < clear]
-        balance = sum(p[1] - ball[1] for p in near)
-        return -1.0 if balance > 0.0 else 1.0
+        :attr:`AttackConfig.kickoff_clear_m` of the ball, to the left when there are none."""
+        side = self._side_away(world, ball, self.config.attack.kickoff_clear_m)
+        return 1.0 if side is None else side
 
     def _escape_side(self, world, ball: tuple[float, float]) -> float:
         """+1 (to the left, team frame y up) or -1: away from the opponents near the ball,
         else towards the middle of the field."""
-        near = [p for p in self._opponent_positions(world) if math.dist(p, ball) < 1.5]
-        if near:
-            mean_y = sum(p[1] for p in near) / len(near)
-            return -1.0 if mean_y > ball[1] else 1.0
+        side = self._side_away(world, ball, 1.5)
+        if side is not None:
+            return side
         return -1.0 if ball[1] > 0.0 else 1.0
+
+    def _side_away(self, world, ball: tuple[float, float], radius_m: float) -> float | None:
+        """+1 (to the left, team frame y up) or -1: away from the mean place across of the
+        opponents within ``radius_m`` of the ball (to the left when it is level with the
+        ball); None when there are none."""
+        near = [p for p in self._opponent_positions(world) if math.dist(p, ball) < radius_m]
+        if not near:
+            return None
+        mean_y = sum(p[1] for p in near) / len(near)
+        return -1.0 if mean_y > ball[1] else 1.0
 
     def _opponent_positions(self, world) -> list[tuple[float, float]]:
         return _recent_positions(world, "opponents")
