@@ -68,6 +68,9 @@ HOLD_HEADING_STEP_DEG = 30.0
 HEAD_FREE_SKILLS = ("walk", "walk_velocity")
 HEAD_STILL_DEG = 30.0
 HEAD_YAW_MAX_DEG = 90.0
+#: basic_kick phases from which its kick plays on whoever comes to the ball
+#: (:meth:`Strategy._shot_contested`)
+COMMITTED_KICK_PHASES = ("head_up", "kick")
 #: a finishing aim (:attr:`AttackConfig.finish_m`) lies this far beyond the goal line (m)
 FINISH_AHEAD_M = 1.0
 
@@ -481,6 +484,8 @@ class Strategy:
         to_goal_m = math.dist((bx, by), (HALF_LENGTH, 0.0))
         can_dribble = "dribble" in skills
         in_range = to_goal_m < range_m and to_goal_m >= attack.dribble_in_m
+        if in_range and self._shot_contested(world, (bx, by), behavior):
+            in_range = range_shot = False
         if "basic_kick" in skills and (in_range or not can_dribble or self._shooting):
             self._dribbling = False
             self._range_shot = in_range
@@ -520,6 +525,19 @@ class Strategy:
             self._walk_to(world, behavior, waypoint, _heading_to(waypoint, approach))
             return
         self._walk_to(world, behavior, approach, math.degrees(to_goal))
+
+    def _shot_contested(self, world, ball: tuple[float, float], behavior) -> bool:
+        """Whether an opponent within :attr:`AttackConfig.shot_contest_m` of the ball stops a
+        range shot: none starts, and one still walking up or lining up ends (the dribble takes
+        the ball on). A kick past its head-up (its last wait before the swing) plays on."""
+        radius = self.config.attack.shot_contest_m
+        if radius <= 0.0:
+            return False
+        current = behavior.current
+        kicking = current is not None and current.name == "basic_kick"
+        if kicking and behavior.skill("basic_kick").phase in COMMITTED_KICK_PHASES:
+            return False
+        return any(math.dist(p, ball) < radius for p in self._opponent_positions(world))
 
     def _round_robots(self, world, target: tuple[float, float]) -> tuple[float, float] | None:
         """A waypoint beside a robot in the way to ``target`` (see

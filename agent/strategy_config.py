@@ -48,6 +48,13 @@ class AttackConfig:
     #: 32, ``python scripts/attack/shot_probe.py --players 3 --matches 4 --seed 1``: 13 of 19
     #: shots ended within a second in their approach, 4 kicked; figures in config/team.yaml)
     kick_range_hold_m: float = 1.0
+    #: ... but no range shot starts, and one still lining up (before its head-up and kick) ends,
+    #: while an opponent is within this of the ball (0: off): the basic kick stands 5-12 s
+    #: at the ball, and in 11 v 11 a defender reached it in that time in every shot (session
+    #: 32, ``scripts/attack/shot_probe.py --players 11``); the dribble goes on instead. Off:
+    #: with 1.0 (``--set strategy.attack.shot_contest_m=1.0``) 11 v 11 seeds 4 / 5 started 5 /
+    #: 2 shots against 1 / 3, none kicked either way, 0-0 in all four matches (sessions 33-34)
+    shot_contest_m: float = 0.0
     #: ... but closer than this, walk it in with the dribble (surer than a kick that falls)
     dribble_in_m: float = 2.5
     #: the approach point lies this far behind the ball on the line goal -> ball

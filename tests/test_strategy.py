@@ -49,6 +49,12 @@ class RecordingBehavior:
     def current(self) -> BehaviorRun | None:
         return BehaviorRun(self.calls[-1][0], 1) if self.calls else None
 
+    def skill(self, name: str) -> SimpleNamespace:
+        """The skill's state as the strategy reads it: ``kick_phase`` for ``basic_kick``."""
+        return SimpleNamespace(phase=self.kick_phase)
+
+    kick_phase = "approach"
+
 
 class Seen:
     """A stand-in player tracker holding the given observations."""
@@ -163,6 +169,31 @@ def test_a_shot_under_way_goes_on_at_the_edge_of_the_kick_range():
     no_hold.decide(world(ball=(9.1, 0.5), pose=(8.8, 0.5, 0.0)), behavior)
     no_hold.decide(world(ball=(8.9, 0.5), pose=(8.6, 0.5, 0.0)), behavior)
     assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+
+
+def test_an_opponent_at_the_ball_stops_a_range_shot_until_its_kick_is_committed():
+    rival = SimpleNamespace(unum=4, position=(9.5, 0.9))  # 0.7 m from the ball
+    contest = Strategy(StrategyConfig(attack=AttackConfig(shot_contest_m=1.0)))
+    behavior = RecordingBehavior("walk", "dribble", "basic_kick")
+    scene = world(ball=(9.1, 0.5), pose=(8.8, 0.5, 0.0), opponents=[rival])
+    contest.decide(scene, behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+    # with the rival 1.2 m off the shot starts ...
+    far = SimpleNamespace(unum=4, position=(9.5, 1.65))
+    contest.decide(world(ball=(9.1, 0.5), pose=(8.8, 0.5, 0.0), opponents=[far]), behavior)
+    assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
+    # ... ends while lining up when the rival comes to the ball ...
+    contest.decide(scene, behavior)
+    assert behavior.calls[-1][:2] == ("dribble", "lfdl")
+    # ... but a kick past its head-up plays on
+    contest.decide(world(ball=(9.1, 0.5), pose=(8.8, 0.5, 0.0), opponents=[far]), behavior)
+    behavior.kick_phase = "head_up"
+    contest.decide(scene, behavior)
+    assert behavior.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
+    # off by default: the default strategy shoots whoever is at the ball
+    default = RecordingBehavior("walk", "dribble", "basic_kick")
+    Strategy().decide(scene, default)
+    assert default.calls[-1] == ("basic_kick", 15.0, 0.0, "long")
 
 
 def test_a_player_with_a_closer_teammate_holds_its_formation_place_facing_the_ball():

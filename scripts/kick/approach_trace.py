@@ -1,11 +1,15 @@
 """Where a basic kick's approach spends its time: one line every ``--every`` cycles of a
 ``benchmarks/kick.py`` basic trial with the skill's phase, the true torso pose, the walk's
 target (the kicking spot or the detour point), the distance and heading error to it, and the
-walk velocity command.
+walk velocity command (``--estimate``: also the localiser's pose and the true ball position).
+The spot and heading error are the skill's own (its motion, ball gap and aimed target; before
+session 34 the trace left the aim out, and its heading error read 6-10 deg off what the walk
+steered by).
 
 Run: ``PYTHONPATH=. python scripts/kick/approach_trace.py --layout-seed 0 --trial 0
-[--distance 3] [--every 10] [--robot-type 0]``. Why: the approach is the longest part of the
-time from the decision to kick to the ball leaving the foot (2-14 s for a ball 0.5-2 m away)."""
+[--distance 3] [--every 10] [--robot-type 0] [--estimate]``. Why: the approach is the longest
+part of the time from the decision to kick to the ball leaving the foot (2-14 s for a ball
+0.5-2 m away)."""
 
 from __future__ import annotations
 
@@ -14,8 +18,14 @@ import math
 
 import numpy as np
 
-from behaviors.basic_kick import detour_point, expected_ball_ego, kick_spot
-from behaviors.kick import kick_motion
+from behaviors.basic_kick import (
+    aimed_target,
+    detour_point,
+    expected_ball_ego,
+    kick_spot,
+    motion_for,
+    strength_for,
+)
 from benchmarks.kick import random_basic_layout, run_basic_trial
 from learning.local_agent import LocalAgent
 
@@ -27,6 +37,11 @@ def main() -> None:
     parser.add_argument("--distance", default="3")
     parser.add_argument("--every", type=int, default=10)
     parser.add_argument("--robot-type", type=int, default=0)
+    parser.add_argument(
+        "--estimate",
+        action="store_true",
+        help="also the localiser's pose and the true ball position",
+    )
     args = parser.parse_args()
     rng = np.random.default_rng(args.layout_seed + 1)
     layouts = [random_basic_layout(rng) for _ in range(args.trial + 1)]
@@ -48,9 +63,12 @@ def main() -> None:
         line = f"{cycle[0] * 0.02:6.2f} s {phase:9s} pose {x:+.2f} {y:+.2f} {h:+6.1f}"
         ball = world.ball.position
         if ball is not None and skill.foot is not None and target:
-            motion = kick_motion(world.robot.robot_type, None, skill.foot, aligned=True)
-            offset = expected_ball_ego(world.robot.robot_type, skill.foot, motion)
-            spot = kick_spot(ball, target[0], offset)
+            # the spot as the skill walks to it: its motion, ball gap and aimed target
+            motion, _ = motion_for(world.robot.robot_type, skill.motions, skill.foot, asked)
+            aim = motion.aim_for(strength_for(motion, asked))
+            aimed = aimed_target(ball[:2], target[0], aim if skill.foot == "left" else -aim)
+            offset = expected_ball_ego(world.robot.robot_type, skill.foot, motion, asked)
+            spot = kick_spot(ball, aimed, offset)
             detour = detour_point(ball, spot, (x, y))
             goal = spot if detour is None else (*detour, float("nan"))
             d = math.dist(goal[:2], (x, y))
@@ -59,7 +77,7 @@ def main() -> None:
             herr = (spot[2] - h + 180.0) % 360.0 - 180.0
             if phase == "approach" and world.ball_relative_ego is not None:
                 context = driver.behavior._context
-                a = skill._alignment(context, motion, target[0])
+                a = skill._alignment(context, motion, aimed)
                 line += f" align {a.along_m:+.3f} {a.across_m:+.3f} {a.heading_deg:+.0f}"
                 if a.within(0.05, 0.05):
                     near.setdefault("aligned", cycle[0] * 0.02)
@@ -69,6 +87,12 @@ def main() -> None:
         if engine is not None:
             vx, vy, w = engine.velocity
             line += f" v {vx:+.2f} {vy:+.2f} {math.degrees(w):+.0f}"
+        if args.estimate:
+            pose = world.pose
+            if pose is not None:
+                line += f" est {pose.x:+.3f} {pose.y:+.3f} {pose.heading_deg:+6.1f}"
+            true_ball = driver.session.ball.position()
+            line += f" ball {true_ball[0]:+.3f} {true_ball[1]:+.3f}"
         if args.every and cycle[0] % args.every == 0:
             print(line, flush=True)
 
