@@ -485,7 +485,7 @@ class Strategy:
         can_dribble = "dribble" in skills
         in_range = to_goal_m < range_m and to_goal_m >= attack.dribble_in_m
         if in_range and self._shot_contested(world, (bx, by), behavior):
-            in_range = range_shot = False
+            in_range = False
         if "basic_kick" in skills and (in_range or not can_dribble or self._shooting):
             self._dribbling = False
             self._range_shot = in_range
