@@ -25,6 +25,7 @@ from behaviors.basic_kick import (
     REACH_PREFERENCE_M,
     SHUFFLE_LIFT_S,
     SHUFFLE_SHIFT_S,
+    TYPE_LONG_KICK_FOOT_CREDIT_M,
     BasicKickSkill,
     FootShuffle,
     aimed_target,
@@ -200,6 +201,20 @@ def test_the_foot_whose_kick_reaches_wins_within_a_metre_of_walking():
     far_left = {"left": 0.5 + REACH_PREFERENCE_M + 0.1, "right": 0.5}
     assert choose_foot(far_left, reach, LONG) == "right"
     assert choose_foot({"left": 0.5, "right": 1.0}, {"left": 4.0, "right": 4.0}, LONG) == "left"
+
+
+def test_a_robot_types_steadier_foot_wins_within_its_credit():
+    """Type 1's left long kick fell in its swing far more often than its right, so for a long
+    kick type 1's right foot wins within ``TYPE_LONG_KICK_FOOT_CREDIT_M``'s metres of extra
+    walking; without a credit the nearer spot wins."""
+    foot, credit = TYPE_LONG_KICK_FOOT_CREDIT_M[1]
+    other = "left" if foot == "right" else "right"
+    reach = {"left": 6.0, "right": 6.0}
+    within = {other: 0.5, foot: 0.5 + 0.8 * credit}
+    beyond = {other: 0.5, foot: 0.5 + 1.2 * credit}
+    assert choose_foot(within, reach, 5.0) == other  # no credit: the nearer spot
+    assert choose_foot(within, reach, 5.0, (foot, credit)) == foot
+    assert choose_foot(beyond, reach, 5.0, (foot, credit)) == other
 
 
 def test_the_long_left_kick_raises_the_support_arm_until_the_recover_frame():
