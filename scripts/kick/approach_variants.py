@@ -1,6 +1,7 @@
-"""``benchmarks/kick.py`` with basic_kick's approach changed: experiments on the approaches that
-never reach their kick (type 2 crept round its kicking spot for 12 s in session 34, stepping
-sideways at the walk's 0.2 m/s floor with 10-20 deg foot spins, until the 20 s limit).
+"""``benchmarks/kick.py`` with basic_kick's approach or foot choice changed: experiments on
+the approaches that never reach their kick (type 2 crept round its kicking spot for 12 s in
+session 34, stepping sideways at the walk's 0.2 m/s floor with 10-20 deg foot spins, until the
+20 s limit) and on the foot a long kick prefers.
 
 Run: ``PYTHONPATH=. python scripts/kick/approach_variants.py [--overshoot TYPE=M ...]
 [--min-speed V] [--creep-stop-s S] [--stop-before-leaving] -- --robot-type 2 --strengths
@@ -16,6 +17,8 @@ runs/kick_abort/README.md, session 34):
   moment (it stops on its own engine) and the settle measures and shuffles from there;
 - ``--stop-before-leaving``: the walk inside skills steps out its stop before it tests whether
   it has left its target (``go_to_stop_before_leaving``, a copy of walk.yaml).
+- ``--foot-credit TYPE=FOOT:M``: ``basic_kick.TYPE_LONG_KICK_FOOT_CREDIT_M`` for that type (the
+  foot a long kick prefers within M metres of extra walking).
 """
 
 from __future__ import annotations
@@ -39,6 +42,15 @@ def overshoot(specs: list[str]) -> None:
         robot_type, metres = spec.split("=")
         table[int(robot_type)] = float(metres)
     basic_kick.TYPE_WALK_OVERSHOOT_M = MappingProxyType(table)
+
+
+def foot_credit(specs: list[str]) -> None:
+    table = dict(basic_kick.TYPE_LONG_KICK_FOOT_CREDIT_M)
+    for spec in specs:
+        robot_type, credit = spec.split("=")
+        foot, metres = credit.split(":")
+        table[int(robot_type)] = (foot, float(metres))
+    basic_kick.TYPE_LONG_KICK_FOOT_CREDIT_M = MappingProxyType(table)
 
 
 def min_speed(speed: float) -> None:
@@ -85,12 +97,14 @@ def stop_before_leaving() -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--overshoot", nargs="*", default=[], metavar="TYPE=M")
+    parser.add_argument("--foot-credit", nargs="*", default=[], metavar="TYPE=FOOT:M")
     parser.add_argument("--min-speed", type=float)
     parser.add_argument("--creep-stop-s", type=float)
     parser.add_argument("--stop-before-leaving", action="store_true")
     parser.add_argument("benchmark", nargs=argparse.REMAINDER, help="-- benchmarks/kick.py args")
     args = parser.parse_args()
     overshoot(args.overshoot)
+    foot_credit(args.foot_credit)
     if args.min_speed is not None:
         min_speed(args.min_speed)
     if args.creep_stop_s is not None:
