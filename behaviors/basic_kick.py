@@ -314,9 +314,8 @@ def choose_foot(
     goes; for "long", the further reach wins), which then wins within
     :data:`REACH_PREFERENCE_M` of extra walking. ``credit`` (foot, metres): that foot wins
     within so much extra walking too (a robot type's steadier foot for the long kick,
-    :data:`TYPE_LONG_KICK_FOOT_CREDIT_M`;
-    session 26's head start for the left long kick of every type went in session 27,
-    docs/tuning-history.md)."""
+    :data:`TYPE_LONG_KICK_FOOT_CREDIT_M`; session 26's head start for the left long kick of
+    every type went in session 27, docs/tuning-history.md)."""
     wanted = math.inf if distance == LONG else float(distance)
     best_reach = max(reach_m.values())
 
@@ -376,6 +375,14 @@ def kick_spot(
     c, s = math.cos(heading), math.sin(heading)
     fx, fy = offset_ego
     return (ball[0] - c * fx + s * fy, ball[1] - s * fx - c * fy, math.degrees(heading))
+
+
+def foot_aim_deg(motion: KickMotion, foot: str, distance: float | str) -> float:
+    """The ball's direction off the facing (deg, + = left) when ``foot`` kicks ``motion`` for
+    ``distance``: the motion's aim for its strength (:meth:`KickMotion.aim_for`, written for the
+    left foot), mirrored for the right."""
+    aim = motion.aim_for(strength_for(motion, distance))
+    return aim if foot == "left" else -aim
 
 
 def aimed_target(
@@ -494,8 +501,7 @@ class BasicKickSkill(Skill):
         ):
             self.foot = self._choose_foot(context, (target_x, target_y))
         motion, long = motion_for(world.robot.robot_type, self.motions, self.foot, distance)
-        aim_deg = motion.aim_for(strength_for(motion, distance))
-        aim = aim_deg if self.foot == "left" else -aim_deg
+        aim = foot_aim_deg(motion, self.foot, distance)
         target = aimed_target(world.ball.position[:2], (target_x, target_y), aim)
         alignment = self._alignment(context, motion, target)
         if self.phase in ("approach", "back_off"):

@@ -22,9 +22,9 @@ from behaviors.basic_kick import (
     aimed_target,
     detour_point,
     expected_ball_ego,
+    foot_aim_deg,
     kick_spot,
     motion_for,
-    strength_for,
 )
 from benchmarks.kick import random_basic_layout, run_basic_trial
 from learning.local_agent import LocalAgent
@@ -65,8 +65,7 @@ def main() -> None:
         if ball is not None and skill.foot is not None and target:
             # the spot as the skill walks to it: its motion, ball gap and aimed target
             motion, _ = motion_for(world.robot.robot_type, skill.motions, skill.foot, asked)
-            aim = motion.aim_for(strength_for(motion, asked))
-            aimed = aimed_target(ball[:2], target[0], aim if skill.foot == "left" else -aim)
+            aimed = aimed_target(ball[:2], target[0], foot_aim_deg(motion, skill.foot, asked))
             offset = expected_ball_ego(world.robot.robot_type, skill.foot, motion, asked)
             spot = kick_spot(ball, aimed, offset)
             detour = detour_point(ball, spot, (x, y))

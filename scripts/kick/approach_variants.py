@@ -34,6 +34,7 @@ import yaml
 import behaviors.basic_kick as basic_kick
 import behaviors.walk as walk
 from benchmarks import kick
+from world.perception import CYCLE_SECONDS
 
 
 def overshoot(specs: list[str]) -> None:
@@ -64,7 +65,7 @@ def min_speed(speed: float) -> None:
 
 
 def creep_stop(seconds: float) -> None:
-    cycles = round(seconds / 0.02)
+    cycles = round(seconds / CYCLE_SECONDS)
     approach = basic_kick.BasicKickSkill._approach
 
     def patched(self, context, motion, target) -> None:
