@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import behaviors.basic_kick as basic_kick_module
+import behaviors.kick as kick_module
 from behaviors.basic_kick import (
     LONG,
     REACH_PREFERENCE_M,
@@ -42,12 +43,14 @@ from behaviors.basic_kick import (
 from behaviors.joint_control import CYCLE_SECONDS, JointCommands
 from behaviors.kick import (
     ALIGNED_SUFFIX,
+    BALANCE_GAIN,
     FEET,
     KICK_LEFT,
     KICK_RIGHT,
     LONG_SUFFIX,
     KickMotion,
     KickSkill,
+    _OneLegBalance,
     default_kicks,
     kick_motion,
     load_kicks,
@@ -494,6 +497,36 @@ def test_kick_skill_writes_the_first_frame_and_finishes_after_the_motion():
             break
     expected = kick_motion(0).sequence(1.0).duration
     assert cycles == round(expected / 0.02)
+
+
+@pytest.mark.parametrize("release_s", [0.0, 0.6])
+def test_the_one_leg_balance_fades_out_over_the_release_once_the_return_to_the_stand_starts(
+    monkeypatch, release_s
+):
+    """The correction of the last balanced cycle is held at the last frame's start and fades
+    linearly to none over BALANCE_RELEASE_S, whatever the torso does then (0: it stops at
+    once); the support ankle and hip get it alike."""
+    monkeypatch.setattr(kick_module, "BALANCE_RELEASE_S", release_s)
+    sequence = kick_motion(0, aligned=True, long=True).sequence(0.3)
+    balance = _OneLegBalance(sequence, mirror=False)
+    start = sequence.frames[0].total
+    end = sequence.duration - sequence.frames[-1].total
+
+    def correction(elapsed: float, roll_deg: float) -> float:
+        commands = JointCommands(0)
+        commands.set_targets({"rlj6": 10.0, "rlj2": 5.0})
+        balance.correct(commands, elapsed, roll_deg)
+        targets = commands.targets()
+        assert targets["rlj2"] - 5.0 == pytest.approx(targets["rlj6"] - 10.0)
+        return targets["rlj6"] - 10.0
+
+    assert correction(start, 1.0) == 0.0  # the reference roll
+    last = correction(end - CYCLE_SECONDS, 3.0)
+    assert last == pytest.approx(2.0 * BALANCE_GAIN)
+    held = correction(end, 30.0)
+    assert held == pytest.approx(last if release_s else 0.0)
+    assert correction(end + 0.5 * release_s, -30.0) == pytest.approx(0.5 * held)
+    assert correction(end + release_s, 30.0) == 0.0
 
 
 @pytest.fixture(scope="module")

@@ -19,6 +19,8 @@ runs/kick_abort/README.md, session 34):
   it has left its target (``go_to_stop_before_leaving``, a copy of walk.yaml).
 - ``--foot-credit TYPE=FOOT:M``: ``basic_kick.TYPE_LONG_KICK_FOOT_CREDIT_M`` for that type (the
   foot a long kick prefers within M metres of extra walking).
+- ``--set module.NAME=value``: any constant of a ``behaviors`` module, as
+  ``scripts/kick/sweep.py --set`` (the kick's own knobs, e.g. ``kick.BALANCE_RELEASE_S=0.3``).
 """
 
 from __future__ import annotations
@@ -35,6 +37,9 @@ import behaviors.basic_kick as basic_kick
 import behaviors.walk as walk
 from benchmarks import kick
 from world.perception import CYCLE_SECONDS
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from sweep import apply
 
 
 def overshoot(specs: list[str]) -> None:
@@ -102,6 +107,7 @@ def main() -> None:
     parser.add_argument("--min-speed", type=float)
     parser.add_argument("--creep-stop-s", type=float)
     parser.add_argument("--stop-before-leaving", action="store_true")
+    parser.add_argument("--set", nargs="*", default=[], metavar="MODULE.NAME=VALUE")
     parser.add_argument("benchmark", nargs=argparse.REMAINDER, help="-- benchmarks/kick.py args")
     args = parser.parse_args()
     overshoot(args.overshoot)
@@ -112,6 +118,7 @@ def main() -> None:
         creep_stop(args.creep_stop_s)
     if args.stop_before_leaving:
         stop_before_leaving()
+    apply(args.set)
     print(f"# variants: {' '.join(sys.argv[1:])}", flush=True)
     rest = args.benchmark[1:] if args.benchmark[:1] == ["--"] else args.benchmark
     sys.argv = ["benchmarks/kick.py", *rest]

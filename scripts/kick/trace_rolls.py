@@ -26,6 +26,7 @@ def main() -> None:
     parser.add_argument("--distance", default="3")
     parser.add_argument("--set", nargs="*", default=[], help="as scripts/kick/sweep.py")
     parser.add_argument("--kicks", type=Path, help="kick file instead of the packaged one")
+    parser.add_argument("--robot-type", type=int, default=0)
     args = parser.parse_args()
     apply(args.set)
     rng = np.random.default_rng(args.layout_seed + 1)
@@ -62,7 +63,9 @@ def main() -> None:
                 )
             )
 
-        result = run_basic_trial(asked, k, *layouts[k], observe=observe, settings=settings)
+        result = run_basic_trial(
+            asked, k, *layouts[k], robot_type=args.robot_type, observe=observe, settings=settings
+        )
         contact = next((i for i, r in enumerate(rows) if r[4]), None)
         fall = next((i for i, r in enumerate(rows) if r[3]), None)
         print(
