@@ -66,8 +66,16 @@ FEET = ("left", "right")
 #: and 10: after a walk and a shuffle the torso rolled up to 15 deg over the support foot on
 #: the way back to the stand, and basic kicks fell 3 of 8 (then 1 of 8; 2 of 16 over 16 layouts).
 BALANCE_GAIN = 3.0
-#: The support ankle's roll correction is limited to this many degrees either way.
-BALANCE_LIMIT_DEG = 16.0
+#: The support ankle's roll correction is limited to this many degrees either way. 28 (16
+#: until session 35): type 3's weak long kicks (asked 4-5 m) fell after contact as the torso
+#: rolled over the kicking foot on its way down, with the correction at 16 deg. Basic kicks
+#: (``scripts/kick/approach_variants.py --set kick.BALANCE_LIMIT_DEG=L -- --robot-type T
+#: --strengths --basic-trials 20 --basic-distance D --layout-seed S``, ``runs/kick_abort/``
+#: ``s35_limit/``, ``s35_t3_land/``): type 3 asked 4 m, seeds 2-5, falls of 80 at 16 / 22 /
+#: 28 / 36 deg: 7 / 4 / 2 / 2; asked 5 m, seeds 2-9, 4 -> 1 of 160. Types 0, 1, 2, 4 asked
+#: 5 m (seeds 2-5), every type asked 3 m (seeds 2-3) and type 3 asked long (seeds 2-5): the
+#: same trials, the same falls.
+BALANCE_LIMIT_DEG = 28.0
 #: Degrees of support-ankle roll per deg/s of torso roll rate (gyro), added to the roll term:
 #: damping, so the correction acts while the lean is still growing rather than after.
 BALANCE_DAMPING = 0.0
