@@ -100,7 +100,7 @@ BALANCE_HIP_SHARE = 1.0
 #: Seconds over which the one-leg balance's last correction fades out once the kick's last
 #: frame (the return to the stand) starts; 0: it stops at once, as it did up to session 34.
 #: Why a fade: in type 3's falls after its long kick (asked 5 m) the torso rolled 20-23 deg
-#: towards the kicking foot as it landed wide, the correction sat at its 16 deg limit, and its
+#: towards the kicking foot as it landed wide, the correction sat at its limit (then 16), and its
 #: sudden end at the last frame threw the torso over the support foot (roll -23 -> +40 deg in
 #: 0.9 s; session 35, a per-cycle trace of layout seed 6, trial 7). 0.6: about the last
 #: frame's move. Basic kicks (``scripts/kick/approach_variants.py --set
