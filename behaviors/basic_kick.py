@@ -397,6 +397,24 @@ def aimed_target(
     return (ball[0] + c * dx - s * dy, ball[1] + s * dx + c * dy)
 
 
+def aimed_motion(
+    robot_type: int,
+    motions: Mapping[str, KickMotion] | None,
+    foot: str,
+    distance: float | str,
+    ball: tuple[float, float],
+    target: tuple[float, float],
+) -> tuple[KickMotion, bool, tuple[float, float]]:
+    """What ``foot`` kicks for ``distance`` towards ``target``: the motion and whether it is
+    the long one (:func:`motion_for`), and the point to line up on, the target turned about
+    ``ball`` by the foot's aim (:func:`foot_aim_deg`, :func:`aimed_target`). One function for
+    the skill and the tools that trace it (``scripts/kick/approach_trace.py``), so that they
+    walk to the same spot."""
+    motion, long = motion_for(robot_type, motions, foot, distance)
+    aimed = aimed_target(ball, target, foot_aim_deg(motion, foot, distance))
+    return motion, long, aimed
+
+
 def detour_point(
     ball: tuple[float, float],
     spot: tuple[float, float, float],
@@ -500,9 +518,14 @@ class BasicKickSkill(Skill):
             and world.distance_to(world.ball.position) > CHOOSE_FOOT_DISTANCE_M
         ):
             self.foot = self._choose_foot(context, (target_x, target_y))
-        motion, long = motion_for(world.robot.robot_type, self.motions, self.foot, distance)
-        aim = foot_aim_deg(motion, self.foot, distance)
-        target = aimed_target(world.ball.position[:2], (target_x, target_y), aim)
+        motion, long, target = aimed_motion(
+            world.robot.robot_type,
+            self.motions,
+            self.foot,
+            distance,
+            world.ball.position[:2],
+            (target_x, target_y),
+        )
         alignment = self._alignment(context, motion, target)
         if self.phase in ("approach", "back_off"):
             self._approach(context, motion, target)

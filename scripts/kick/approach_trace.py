@@ -18,14 +18,7 @@ import math
 
 import numpy as np
 
-from behaviors.basic_kick import (
-    aimed_target,
-    detour_point,
-    expected_ball_ego,
-    foot_aim_deg,
-    kick_spot,
-    motion_for,
-)
+from behaviors.basic_kick import aimed_motion, detour_point, expected_ball_ego, kick_spot
 from benchmarks.kick import random_basic_layout, run_basic_trial
 from learning.local_agent import LocalAgent
 
@@ -64,8 +57,9 @@ def main() -> None:
         ball = world.ball.position
         if ball is not None and skill.foot is not None and target:
             # the spot as the skill walks to it: its motion, ball gap and aimed target
-            motion, _ = motion_for(world.robot.robot_type, skill.motions, skill.foot, asked)
-            aimed = aimed_target(ball[:2], target[0], foot_aim_deg(motion, skill.foot, asked))
+            motion, _, aimed = aimed_motion(
+                world.robot.robot_type, skill.motions, skill.foot, asked, ball[:2], target[0]
+            )
             offset = expected_ball_ego(world.robot.robot_type, skill.foot, motion, asked)
             spot = kick_spot(ball, aimed, offset)
             detour = detour_point(ball, spot, (x, y))
